@@ -1,0 +1,37 @@
+# Selects the kernel backend. CPU: g++ with Thrust's OpenMP device system (Debian's libthrust-dev, or the
+# CUDA toolkit's CCCL when Debian's is absent). CUDA: nvcc compiles every kernel source (LANGUAGE CUDA).
+include_guard(GLOBAL)
+
+if(BLASTSIM_ENABLE_CUDA)
+  if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
+    set(CMAKE_CUDA_ARCHITECTURES 90)  # Hopper (H100); override with -DCMAKE_CUDA_ARCHITECTURES=...
+  endif()
+  enable_language(CUDA)
+  set(CMAKE_CUDA_STANDARD 17)
+  set(CMAKE_CUDA_STANDARD_REQUIRED ON)
+  find_package(CUDAToolkit REQUIRED)
+  set(BLASTSIM_BACKEND "cuda")
+else()
+  find_package(OpenMP REQUIRED COMPONENTS CXX)
+  find_path(BLASTSIM_THRUST_INCLUDE_DIR thrust/version.h
+            PATHS /usr/include /usr/local/cuda/include/cccl /usr/local/cuda/include
+            DOC "Directory holding thrust/ (Debian libthrust-dev or the CUDA toolkit's CCCL)")
+  if(NOT BLASTSIM_THRUST_INCLUDE_DIR)
+    message(FATAL_ERROR "Thrust not found: install Debian's libthrust-dev (apt-get install libthrust-dev) "
+                        "or set BLASTSIM_THRUST_INCLUDE_DIR")
+  endif()
+  set(BLASTSIM_BACKEND "cpu-openmp")
+endif()
+message(STATUS "blastsim backend: ${BLASTSIM_BACKEND}")
+
+# Marks kernel sources as CUDA in a CUDA build (MFEM/AMReX style: sources stay .cpp).
+function(blastsim_kernel_sources)
+  if(BLASTSIM_ENABLE_CUDA)
+    set_source_files_properties(${ARGN} PROPERTIES LANGUAGE CUDA)
+  endif()
+endfunction()
+
+# Common warning set for project targets.
+function(blastsim_warnings target)
+  target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>)
+endfunction()

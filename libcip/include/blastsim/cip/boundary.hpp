@@ -1,0 +1,64 @@
+//! \file boundary.hpp
+//! \brief Outer boundaries of the gas grid: non-reflecting outflow (the paper's), reflective wall, periodic.
+#pragma once
+
+#include "blastsim/core/backend.hpp"
+
+#include <array>
+#include <string>
+
+namespace blastsim::cip {
+
+//! Kind of one side of the domain.
+enum class BoundaryKind {
+  outflow,   //!< zero-gradient extrapolation ("continuous" boundary of the paper): ghosts copy the edge
+  wall,      //!< reflective slip wall: mirror ghosts, normal velocity odd, zero on the wall face
+  periodic,  //!< the opposite side continues the domain (must be set on both sides)
+};
+
+enum Side { left = 0, right = 1, bottom = 2, top = 3 };
+
+struct BoundaryConditions {
+  std::array<BoundaryKind, 4> side{BoundaryKind::outflow, BoundaryKind::outflow, BoundaryKind::outflow,
+                                   BoundaryKind::outflow};  //!< indexed by Side
+  static BoundaryConditions all(BoundaryKind k) { return BoundaryConditions{{k, k, k, k}}; }
+};
+
+const char* to_string(BoundaryKind k);
+//! Parses "outflow" | "wall" | "periodic"; returns false on anything else.
+bool parse_boundary_kind(const std::string& text, BoundaryKind& out);
+
+//! Where a ghost (or boundary-face) value comes from, and the factors applied to it.
+struct GhostSource {
+  int source;              //!< index along the normal direction to copy from
+  double value_factor;     //!< multiplies the value
+  double normal_factor;    //!< multiplies the derivative along the boundary normal
+  double tangent_factor;   //!< multiplies the derivative along the boundary
+};
+
+//! Ghost rule along one direction for index k outside the valid range (or on a boundary face).
+//! n: cells in that direction; face_centred: the variable sits on faces 0..n in that direction;
+//! parity: +1 for variables even under a mirror at the boundary, -1 for the normal velocity.
+//! Rules: outflow copies the nearest valid point with zero normal derivative; wall mirrors about the
+//! boundary (value * parity, normal derivative * -parity) and sets an odd variable to zero on the wall
+//! face; periodic wraps by n.
+BLAST_HD inline GhostSource ghost_source(int k, int n, bool face_centred, BoundaryKind kind, double parity) {
+  const bool low = k <= 0;  // left/bottom side (k == 0 only reaches here for a boundary face)
+  switch (kind) {
+    case BoundaryKind::periodic:
+      if (face_centred && k == 0) return {0, 1.0, 1.0, 1.0};
+      return {low ? k + n : k - n, 1.0, 1.0, 1.0};
+    case BoundaryKind::wall:
+      if (face_centred) {
+        if (k == 0 || k == n) return {k, parity > 0 ? 1.0 : 0.0, 1.0, parity > 0 ? 1.0 : 0.0};
+        return {low ? -k : 2 * n - k, parity, -parity, parity};
+      }
+      return {low ? -k - 1 : 2 * n - 1 - k, parity, -parity, parity};
+    case BoundaryKind::outflow:
+    default:
+      if (face_centred) return {low ? 0 : n, 1.0, 0.0, 1.0};
+      return {low ? 0 : n - 1, 1.0, 0.0, 1.0};
+  }
+}
+
+}  // namespace blastsim::cip

@@ -1,0 +1,104 @@
+//! \file boundary.cpp
+//! \brief Ghost-value kernels for the outer boundaries of the staggered gas grid.
+#include "ghosts.hpp"
+
+#include "blastsim/cip/gas_state.hpp"
+#include "blastsim/cip/grid.hpp"
+
+namespace blastsim::cip {
+
+const char* to_string(BoundaryKind k) {
+  switch (k) {
+    case BoundaryKind::outflow: return "outflow";
+    case BoundaryKind::wall: return "wall";
+    case BoundaryKind::periodic: return "periodic";
+  }
+  return "?";
+}
+
+bool parse_boundary_kind(const std::string& text, BoundaryKind& out) {
+  if (text == "outflow") out = BoundaryKind::outflow;
+  else if (text == "wall") out = BoundaryKind::wall;
+  else if (text == "periodic") out = BoundaryKind::periodic;
+  else return false;
+  return true;
+}
+
+namespace detail {
+
+//! Applies the ghost rule to one CIP unknown at ghost index k along x (axis 0) or y (axis 1).
+BLAST_HD inline void fill_one(const CipFieldView& F, int axis, int k, int t, int n, bool face_centred,
+                              BoundaryKind kind, double parity) {
+  const GhostSource s = ghost_source(k, n, face_centred, kind, parity);
+  if (axis == 0) {
+    F.f(k, t) = s.value_factor * F.f(s.source, t);
+    F.gx(k, t) = s.normal_factor * F.gx(s.source, t);
+    F.gy(k, t) = s.tangent_factor * F.gy(s.source, t);
+  } else {
+    F.f(t, k) = s.value_factor * F.f(t, s.source);
+    F.gy(t, k) = s.normal_factor * F.gy(t, s.source);
+    F.gx(t, k) = s.tangent_factor * F.gx(t, s.source);
+  }
+}
+
+//! Does the ghost rule touch index k of a variable with this centring? Ghost indices always; the
+//! boundary face itself only for a wall (normal velocity zero) or the far periodic face (copy of face 0).
+BLAST_HD inline bool is_ghost(int k, int n, bool face_centred, BoundaryKind kind) {
+  if (!face_centred) return k < 0 || k >= n;
+  if (k < 0 || k > n) return true;
+  if (kind == BoundaryKind::wall) return k == 0 || k == n;
+  if (kind == BoundaryKind::periodic) return k == n;
+  return false;
+}
+
+//! One thread per (ghost column, row): fills all four unknowns along x. Columns: -g..-1, 0 (boundary
+//! face), nx..nx+g (nx is the first cell ghost and the last face).
+struct FillGhostsX {
+  GasStateView s;
+  int nx;
+  BoundaryKind lo, hi;
+  BLAST_HD void operator()(int c, int t) const {
+    const int g = GasGrid::ghost;
+    const int k = c < g + 1 ? c - g : nx + (c - g - 1);  // c in [0, 2g + 2)
+    const BoundaryKind kind = k <= 0 ? lo : hi;
+    if (is_ghost(k, nx, false, kind)) {
+      fill_one(s.rho, 0, k, t, nx, false, kind, 1.0);
+      fill_one(s.e, 0, k, t, nx, false, kind, 1.0);
+      fill_one(s.v, 0, k, t, nx, false, kind, 1.0);
+    }
+    if (is_ghost(k, nx, true, kind)) fill_one(s.u, 0, k, t, nx, true, kind, -1.0);
+  }
+};
+
+//! Same along y for every column (x ghosts included), so corners follow from the x pass.
+struct FillGhostsY {
+  GasStateView s;
+  int ny;
+  BoundaryKind lo, hi;
+  BLAST_HD void operator()(int t, int c) const {
+    const int g = GasGrid::ghost;
+    const int k = c < g + 1 ? c - g : ny + (c - g - 1);
+    const BoundaryKind kind = k <= 0 ? lo : hi;
+    if (is_ghost(k, ny, false, kind)) {
+      fill_one(s.rho, 1, k, t, ny, false, kind, 1.0);
+      fill_one(s.e, 1, k, t, ny, false, kind, 1.0);
+      fill_one(s.u, 1, k, t, ny, false, kind, 1.0);
+    }
+    if (is_ghost(k, ny, true, kind)) fill_one(s.v, 1, k, t, ny, true, kind, -1.0);
+  }
+};
+
+}  // namespace detail
+
+//! Fills the ghosts of a state (used on the current and on the starred state).
+void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryConditions& bc) {
+  const int g = GasGrid::ghost;
+  // x pass over the logical rows [0, ny] (cells 0..ny-1 and y-faces 0..ny).
+  for_each_cell("cip.ghosts.x", 0, 2 * g + 2, 0, grid.ny + 1,
+                detail::FillGhostsX{s, grid.nx, bc.side[left], bc.side[right]});
+  // y pass over every column of the padded array.
+  for_each_cell("cip.ghosts.y", -g, grid.nx + 1 + g, 0, 2 * g + 2,
+                detail::FillGhostsY{s, grid.ny, bc.side[bottom], bc.side[top]});
+}
+
+}  // namespace blastsim::cip

@@ -1,0 +1,517 @@
+//! \file gas_solver.cpp
+//! \brief The CIP gas step (paper eqs. 1-5; Yabe & Aoki 1991; Yabe, Xiao & Utsumi 2001) as device kernels.
+#include "blastsim/cip/gas_solver.hpp"
+
+#include "blastsim/core/error.hpp"
+#include "ghosts.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace blastsim::cip {
+
+GasGrid GasGrid::from_box(int nx, int ny, double x0, double x1, double y0, double y1) {
+  if (nx < 3 || ny < 3) throw InputError("gas grid needs at least 3 cells along x and y");
+  if (!(x1 > x0) || !(y1 > y0)) throw InputError("gas grid box is empty (need x_max > x_min, y_max > y_min)");
+  return GasGrid{nx, ny, x0, y0, (x1 - x0) / nx, (y1 - y0) / ny};
+}
+
+EquationOfState EquationOfState::ideal(double gamma) {
+  if (!(gamma > 1.0) || !std::isfinite(gamma)) throw InputError("ideal-gas gamma must be > 1");
+  return EquationOfState{EosKind::ideal_gas, gamma};
+}
+
+namespace detail {
+
+BLAST_HD inline CipPoint load(const CipFieldView& F, int i, int j) { return {F.f(i, j), F.gx(i, j), F.gy(i, j)}; }
+BLAST_HD inline void store(const CipFieldView& F, int i, int j, const CipPoint& p) {
+  F.f(i, j) = p.f;
+  F.gx(i, j) = p.gx;
+  F.gy(i, j) = p.gy;
+}
+
+//! P = p + q at cell centres over [-1, nx] x [-1, ny] (paper eqs. 4-5). Inactive cells get q = 0.
+struct PressureKernel {
+  GasStateView s;
+  Field2D<const std::uint8_t> active;
+  Field2D<double> P;
+  EquationOfState eos;
+  double c1, c2;
+  BLAST_HD void operator()(int i, int j) const {
+    const double rho = s.rho.f(i, j), e = s.e.f(i, j);
+    const double dU = velocity_jump(s.u.f(i, j), s.u.f(i + 1, j), s.v.f(i, j), s.v.f(i, j + 1));
+    const double q = active(i, j) ? artificial_viscosity(rho, eos.sound_speed(rho, e), dU, c1, c2) : 0.0;
+    P(i, j) = eos.pressure(rho, e) + q;
+  }
+};
+
+//! Non-advection phase for a face velocity (axis 0: u on x-faces, axis 1: v on y-faces):
+//! u* = u - dt (P_i - P_{i-1}) / (dx (rho_{i-1} + rho_i)/2)   (paper eq. 2 without advection).
+//! A prescribed face takes the solid's velocity; a face beside an inactive cell feels no pressure force.
+struct FaceVelocityKernel {
+  int axis;
+  CipFieldView vel;     // u or v, current
+  Field2D<double> out;  // u* or v*
+  Field2D<const double> rho, P;
+  Field2D<const std::uint8_t> active, prescribed;
+  Field2D<const double> imposed;
+  double dt, h;
+  BLAST_HD void operator()(int i, int j) const {
+    const int im = axis == 0 ? i - 1 : i, jm = axis == 0 ? j : j - 1;
+    double w = vel.f(i, j);
+    if (prescribed(i, j)) {
+      w = imposed(i, j);
+    } else if (active(im, jm) && active(i, j)) {
+      w -= dt * (P(i, j) - P(im, jm)) / (h * 0.5 * (rho(im, jm) + rho(i, j)));
+    }
+    out(i, j) = w;
+  }
+};
+
+//! Non-advection phase for cell quantities (paper eqs. 1 and 3 without advection):
+//! rho* = rho - dt rho div(u^n);  e* = e - dt (P / rho) [div(u^n) + div(u*)] / 2.
+struct CellNonAdvectionKernel {
+  GasStateView s;
+  Field2D<double> rho_out, e_out;
+  Field2D<const double> us, vs, P;
+  Field2D<const std::uint8_t> active;
+  double dt, dx, dy;
+  BLAST_HD void operator()(int i, int j) const {
+    const double rho = s.rho.f(i, j), e = s.e.f(i, j);
+    if (!active(i, j)) {
+      rho_out(i, j) = rho;
+      e_out(i, j) = e;
+      return;
+    }
+    const double div_n = (s.u.f(i + 1, j) - s.u.f(i, j)) / dx + (s.v.f(i, j + 1) - s.v.f(i, j)) / dy;
+    const double div_s = (us(i + 1, j) - us(i, j)) / dx + (vs(i, j + 1) - vs(i, j)) / dy;
+    rho_out(i, j) = rho - dt * rho * div_n;
+    e_out(i, j) = e - dt * (P(i, j) / rho) * 0.5 * (div_n + div_s);
+  }
+};
+
+//! Derivative update after the non-advection phase (Yabe, Xiao & Utsumi 2001, sec. 4):
+//!   gx* = gx + d(f* - f)/dx - dt (gx du/dx + gy dv/dx),  gy* = gy + d(f* - f)/dy - dt (gx du/dy + gy dv/dy),
+//! with centred differences of the change and velocity gradients at the variable's own location.
+BLAST_HD inline void update_derivatives(const CipFieldView& old, const CipFieldView& now, int i, int j, double dx,
+                                        double dy, double dt, double ux, double uy, double vx, double vy) {
+  const double dfx = ((now.f(i + 1, j) - old.f(i + 1, j)) - (now.f(i - 1, j) - old.f(i - 1, j))) / (2.0 * dx);
+  const double dfy = ((now.f(i, j + 1) - old.f(i, j + 1)) - (now.f(i, j - 1) - old.f(i, j - 1))) / (2.0 * dy);
+  const double gx = old.gx(i, j), gy = old.gy(i, j);
+  now.gx(i, j) = gx + dfx - dt * (gx * ux + gy * vx);
+  now.gy(i, j) = gy + dfy - dt * (gx * uy + gy * vy);
+}
+
+struct CellDerivativeKernel {
+  GasStateView old, now;
+  Field2D<const std::uint8_t> active;
+  double dt, dx, dy;
+  BLAST_HD void operator()(int i, int j) const {
+    if (!active(i, j)) {
+      now.rho.gx(i, j) = old.rho.gx(i, j);
+      now.rho.gy(i, j) = old.rho.gy(i, j);
+      now.e.gx(i, j) = old.e.gx(i, j);
+      now.e.gy(i, j) = old.e.gy(i, j);
+      return;
+    }
+    const Field2D<double>& u = now.u.f;
+    const Field2D<double>& v = now.v.f;
+    const double ux = (u(i + 1, j) - u(i, j)) / dx;
+    const double vy = (v(i, j + 1) - v(i, j)) / dy;
+    const double vx = 0.5 * ((v(i + 1, j) + v(i + 1, j + 1)) - (v(i - 1, j) + v(i - 1, j + 1))) / (2.0 * dx);
+    const double uy = 0.5 * ((u(i, j + 1) + u(i + 1, j + 1)) - (u(i, j - 1) + u(i + 1, j - 1))) / (2.0 * dy);
+    update_derivatives(old.rho, now.rho, i, j, dx, dy, dt, ux, uy, vx, vy);
+    update_derivatives(old.e, now.e, i, j, dx, dy, dt, ux, uy, vx, vy);
+  }
+};
+
+//! Derivative update of a face velocity (axis 0: u at x-faces; axis 1: v at y-faces).
+struct FaceDerivativeKernel {
+  int axis;
+  GasStateView old, now;
+  Field2D<const std::uint8_t> prescribed;
+  double dt, dx, dy;
+  BLAST_HD void operator()(int i, int j) const {
+    const CipFieldView& o = axis == 0 ? old.u : old.v;
+    const CipFieldView& n = axis == 0 ? now.u : now.v;
+    if (prescribed(i, j)) {
+      n.gx(i, j) = 0.0;
+      n.gy(i, j) = 0.0;
+      return;
+    }
+    const Field2D<double>& u = now.u.f;
+    const Field2D<double>& v = now.v.f;
+    double ux, uy, vx, vy;
+    if (axis == 0) {  // at x-face (i, j), between cells i-1 and i
+      ux = (u(i + 1, j) - u(i - 1, j)) / (2.0 * dx);
+      uy = (u(i, j + 1) - u(i, j - 1)) / (2.0 * dy);
+      vx = 0.5 * ((v(i, j) + v(i, j + 1)) - (v(i - 1, j) + v(i - 1, j + 1))) / dx;
+      vy = 0.5 * ((v(i - 1, j + 1) - v(i - 1, j)) + (v(i, j + 1) - v(i, j))) / dy;
+    } else {  // at y-face (i, j), between cells j-1 and j
+      vy = (v(i, j + 1) - v(i, j - 1)) / (2.0 * dy);
+      vx = (v(i + 1, j) - v(i - 1, j)) / (2.0 * dx);
+      uy = 0.5 * ((u(i, j) + u(i + 1, j)) - (u(i, j - 1) + u(i + 1, j - 1))) / dy;
+      ux = 0.5 * ((u(i + 1, j - 1) - u(i, j - 1)) + (u(i + 1, j) - u(i, j))) / dx;
+    }
+    update_derivatives(o, n, i, j, dx, dy, dt, ux, uy, vx, vy);
+  }
+};
+
+//! Upwind geometry of one point: upwind indices, offsets D and departure shifts X = -u dt.
+struct Upwind {
+  int iu, ju;
+  double Dx, Dy, X, Y;
+};
+BLAST_HD inline Upwind upwind(int i, int j, double uu, double vv, double dt, double dx, double dy) {
+  const int sx = uu >= 0.0 ? 1 : -1;
+  const int sy = vv >= 0.0 ? 1 : -1;
+  return {i - sx, j - sy, -sx * dx, -sy * dy, -uu * dt, -vv * dt};
+}
+
+BLAST_HD inline CipPoint advect(const CipFieldView& F, int i, int j, const Upwind& w, Limiter limiter) {
+  const UpwindBlock b{load(F, i, j), load(F, w.iu, j), load(F, i, w.ju), load(F, w.iu, w.ju)};
+  return cip_advect_2d(b, w.Dx, w.Dy, w.X, w.Y, limiter);
+}
+
+//! Cell advection with an inactive upwind neighbour seen as a copy of the point itself (zero gradient).
+BLAST_HD inline CipPoint advect_masked(const CipFieldView& F, int i, int j, const Upwind& w,
+                                       Field2D<const std::uint8_t> active, Limiter limiter) {
+  const CipPoint c = load(F, i, j);
+  const CipPoint flat{c.f, 0.0, 0.0};
+  const UpwindBlock b{c, active(w.iu, j) ? load(F, w.iu, j) : flat, active(i, w.ju) ? load(F, i, w.ju) : flat,
+                      active(w.iu, w.ju) ? load(F, w.iu, w.ju) : flat};
+  return cip_advect_2d(b, w.Dx, w.Dy, w.X, w.Y, limiter);
+}
+
+//! CIP advection of rho and e with the cell-centre velocity (average of the face velocities).
+struct CellAdvectionKernel {
+  GasStateView from, to;
+  Field2D<const std::uint8_t> active;
+  double dt, dx, dy;
+  Limiter limiter;
+  BLAST_HD void operator()(int i, int j) const {
+    if (!active(i, j)) {
+      store(to.rho, i, j, load(from.rho, i, j));
+      store(to.e, i, j, load(from.e, i, j));
+      return;
+    }
+    const double uc = 0.5 * (from.u.f(i, j) + from.u.f(i + 1, j));
+    const double vc = 0.5 * (from.v.f(i, j) + from.v.f(i, j + 1));
+    const Upwind w = upwind(i, j, uc, vc, dt, dx, dy);
+    store(to.rho, i, j, advect_masked(from.rho, i, j, w, active, limiter));
+    store(to.e, i, j, advect_masked(from.e, i, j, w, active, limiter));
+  }
+};
+
+//! CIP advection of a face velocity with itself and the transverse velocity averaged from the four
+//! nearest transverse faces (Yabe et al. 1991, staggered form).
+struct FaceAdvectionKernel {
+  int axis;
+  GasStateView from, to;
+  Field2D<const std::uint8_t> prescribed;
+  Field2D<const double> imposed;
+  double dt, dx, dy;
+  Limiter limiter;
+  BLAST_HD void operator()(int i, int j) const {
+    const CipFieldView& F = axis == 0 ? from.u : from.v;
+    const CipFieldView& T = axis == 0 ? to.u : to.v;
+    if (prescribed(i, j)) {
+      store(T, i, j, CipPoint{imposed(i, j), 0.0, 0.0});
+      return;
+    }
+    double uu, vv;
+    if (axis == 0) {
+      uu = from.u.f(i, j);
+      vv = 0.25 * (from.v.f(i - 1, j) + from.v.f(i, j) + from.v.f(i - 1, j + 1) + from.v.f(i, j + 1));
+    } else {
+      vv = from.v.f(i, j);
+      uu = 0.25 * (from.u.f(i, j - 1) + from.u.f(i + 1, j - 1) + from.u.f(i, j) + from.u.f(i + 1, j));
+    }
+    store(T, i, j, advect(F, i, j, upwind(i, j, uu, vv, dt, dx, dy), limiter));
+  }
+};
+
+//! Signal rate max((|u_c| + c)/dx, (|v_c| + c)/dy) [1/s] of one cell; +inf for an invalid active cell.
+struct SignalRate {
+  GasStateView s;
+  Field2D<const std::uint8_t> active;
+  EquationOfState eos;
+  int nx;
+  double dx, dy;
+  BLAST_HD double operator()(index_t k) const {
+    const int j = static_cast<int>(k / nx), i = static_cast<int>(k - static_cast<index_t>(j) * nx);
+    if (!active(i, j)) return 0.0;
+    const double rho = s.rho.f(i, j), e = s.e.f(i, j);
+    const double uc = 0.5 * (s.u.f(i, j) + s.u.f(i + 1, j));
+    const double vc = 0.5 * (s.v.f(i, j) + s.v.f(i, j + 1));
+    const double c = eos.sound_speed(rho, e);
+    const double rx = (fabs(uc) + c) / dx, ry = (fabs(vc) + c) / dy;
+    const double r = rx > ry ? rx : ry;
+    const bool ok = rho > 0.0 && e > 0.0 && r < 1e300;  // false for NaN as well
+    return ok ? r : INFINITY;
+  }
+};
+
+//! Sums for GasTotals, reducible on the device.
+struct TotalsSum {
+  double m, mx, my, ei, ek;
+  BLAST_HD TotalsSum operator+(const TotalsSum& o) const {
+    return {m + o.m, mx + o.mx, my + o.my, ei + o.ei, ek + o.ek};
+  }
+};
+struct TotalsOfCell {
+  GasStateView s;
+  Field2D<const std::uint8_t> active;
+  int nx;
+  double area;
+  BLAST_HD TotalsSum operator()(index_t k) const {
+    const int j = static_cast<int>(k / nx), i = static_cast<int>(k - static_cast<index_t>(j) * nx);
+    if (!active(i, j)) return {0, 0, 0, 0, 0};
+    const double m = s.rho.f(i, j) * area;
+    const double uc = 0.5 * (s.u.f(i, j) + s.u.f(i + 1, j));
+    const double vc = 0.5 * (s.v.f(i, j) + s.v.f(i, j + 1));
+    return {m, m * uc, m * vc, m * s.e.f(i, j), 0.5 * m * (uc * uc + vc * vc)};
+  }
+};
+
+//! Bilinear interpolation of a padded array whose point (i, j) sits at (x0 + i h_x, y0 + j h_y).
+BLAST_HD inline double bilinear(Field2D<const double> F, double x0, double y0, double hx, double hy, int imax,
+                                int jmax, double x, double y) {
+  double sx = (x - x0) / hx, sy = (y - y0) / hy;
+  int i = static_cast<int>(floor(sx)), j = static_cast<int>(floor(sy));
+  i = i < -1 ? -1 : (i > imax ? imax : i);
+  j = j < -1 ? -1 : (j > jmax ? jmax : j);
+  sx -= i;
+  sy -= j;
+  return (1 - sx) * (1 - sy) * F(i, j) + sx * (1 - sy) * F(i + 1, j) + (1 - sx) * sy * F(i, j + 1) +
+         sx * sy * F(i + 1, j + 1);
+}
+
+struct SampleKernel {
+  GasStateView s;
+  GasGrid g;
+  EquationOfState eos;
+  const double* xy;
+  GasSample* out;
+  BLAST_HD void operator()(index_t k) const {
+    const double x = xy[2 * k], y = xy[2 * k + 1];
+    const double xc = g.x_min + 0.5 * g.dx, yc = g.y_min + 0.5 * g.dy;
+    Field2D<const double> rho{s.rho.f.data, s.rho.f.shape}, e{s.e.f.data, s.e.f.shape};
+    Field2D<const double> u{s.u.f.data, s.u.f.shape}, v{s.v.f.data, s.v.f.shape};
+    GasSample r;
+    r.x = x;
+    r.y = y;
+    r.rho = bilinear(rho, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
+    r.e = bilinear(e, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
+    r.u = bilinear(u, g.x_min, yc, g.dx, g.dy, g.nx, g.ny - 1, x, y);
+    r.v = bilinear(v, xc, g.y_min, g.dx, g.dy, g.nx - 1, g.ny, x, y);
+    r.p = eos.pressure(r.rho, r.e);
+    out[k] = r;
+  }
+};
+
+}  // namespace detail
+
+GasSolver::GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasSolverOptions& options)
+    : grid_(grid), eos_(eos), options_(options) {
+  if (grid.nx < 3 || grid.ny < 3) throw InputError("gas grid needs at least 3 cells along x and y");
+  if (!(grid.dx > 0) || !(grid.dy > 0)) throw InputError("gas grid spacing must be positive");
+  for (int a = 0; a < 2; ++a) {
+    const bool lo = options.boundaries.side[2 * a] == BoundaryKind::periodic;
+    const bool hi = options.boundaries.side[2 * a + 1] == BoundaryKind::periodic;
+    if (lo != hi) throw InputError("a periodic boundary must be set on both opposite sides");
+  }
+  const index_t n = grid.padded_shape().size();
+  state_.resize(n);
+  starred_.resize(n);
+  immersed_.resize(n);
+  pressure_.assign(n, 0.0);
+}
+
+void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_at) {
+  const PaddedShape sh = grid_.padded_shape();
+  std::vector<double> rho(sh.size(), 0.0), e(sh.size(), 0.0), u(sh.size(), 0.0), v(sh.size(), 0.0);
+  for (int j = 0; j <= grid_.ny; ++j) {
+    for (int i = 0; i <= grid_.nx; ++i) {
+      if (i < grid_.nx && j < grid_.ny) {
+        const GasPoint c = state_at(grid_.cell_x(i), grid_.cell_y(j));
+        rho[sh.offset(i, j)] = c.density;
+        e[sh.offset(i, j)] = c.internal_energy;
+      }
+      if (j < grid_.ny) u[sh.offset(i, j)] = state_at(grid_.face_x(i), grid_.cell_y(j)).velocity_x;
+      if (i < grid_.nx) v[sh.offset(i, j)] = state_at(grid_.cell_x(i), grid_.face_y(j)).velocity_y;
+    }
+  }
+  state_.resize(sh.size());
+  copy_from_host(state_.rho.f, rho);
+  copy_from_host(state_.e.f, e);
+  copy_from_host(state_.u.f, u);
+  copy_from_host(state_.v.f, v);
+  time_ = 0.0;
+  steps_ = 0;
+  apply_boundaries();
+}
+
+void GasSolver::apply_boundaries() { fill_ghosts(state(), grid_, options_.boundaries); }
+
+double GasSolver::max_signal_rate() {
+  const GasStateView s = state();
+  const ImmersedBoundaryView ib = immersed_boundary();
+  return reduce_max("cip.signal_rate", static_cast<index_t>(grid_.nx) * grid_.ny, 0.0,
+                    detail::SignalRate{s, {ib.cell_active.data, ib.cell_active.shape}, eos_, grid_.nx, grid_.dx,
+                                       grid_.dy});
+}
+
+void GasSolver::step(double dt) {
+  const GasGrid g = grid_;
+  const PaddedShape sh = g.padded_shape();
+  const GasStateView n = state();
+  const GasStateView s = starred_.view(sh);
+  const ImmersedBoundaryView ib = immersed_boundary();
+  const Field2D<const std::uint8_t> active{ib.cell_active.data, sh};
+  const Field2D<const std::uint8_t> u_pres{ib.u_prescribed.data, sh}, v_pres{ib.v_prescribed.data, sh};
+  const Field2D<const double> u_imp{ib.u_imposed.data, sh}, v_imp{ib.v_imposed.data, sh};
+  const Field2D<double> P = pressure_with_viscosity();
+  const Field2D<const double> Pc{P.data, sh}, rho_n{n.rho.f.data, sh};
+  const Field2D<const double> us{s.u.f.data, sh}, vs{s.v.f.data, sh};
+
+  // 1. Boundary values, then P = p + q (paper eqs. 4-5).
+  fill_ghosts(n, g, options_.boundaries);
+  for_each_cell("cip.pressure", -1, g.nx + 1, -1, g.ny + 1,
+                detail::PressureKernel{n, active, P, eos_, options_.viscosity.linear, options_.viscosity.quadratic});
+  // 2. Non-advection phase: face velocities, then density and energy (paper eqs. 1-3).
+  for_each_cell("cip.face_velocity.u", 0, g.nx + 1, 0, g.ny,
+                detail::FaceVelocityKernel{0, n.u, s.u.f, rho_n, Pc, active, u_pres, u_imp, dt, g.dx});
+  for_each_cell("cip.face_velocity.v", 0, g.nx, 0, g.ny + 1,
+                detail::FaceVelocityKernel{1, n.v, s.v.f, rho_n, Pc, active, v_pres, v_imp, dt, g.dy});
+  for_each_cell("cip.cell_nonadvection", 0, g.nx, 0, g.ny,
+                detail::CellNonAdvectionKernel{n, s.rho.f, s.e.f, us, vs, Pc, active, dt, g.dx, g.dy});
+  fill_ghosts(s, g, options_.boundaries);
+  // 3. Derivative update (Yabe, Xiao & Utsumi 2001).
+  for_each_cell("cip.derivatives.cell", 0, g.nx, 0, g.ny, detail::CellDerivativeKernel{n, s, active, dt, g.dx, g.dy});
+  for_each_cell("cip.derivatives.u", 0, g.nx + 1, 0, g.ny,
+                detail::FaceDerivativeKernel{0, n, s, u_pres, dt, g.dx, g.dy});
+  for_each_cell("cip.derivatives.v", 0, g.nx, 0, g.ny + 1,
+                detail::FaceDerivativeKernel{1, n, s, v_pres, dt, g.dx, g.dy});
+  fill_ghosts(s, g, options_.boundaries);
+  // 4. CIP advection of values and derivatives with the updated velocity, back into the current state.
+  for_each_cell("cip.advection.cell", 0, g.nx, 0, g.ny,
+                detail::CellAdvectionKernel{s, n, active, dt, g.dx, g.dy, options_.limiter});
+  for_each_cell("cip.advection.u", 0, g.nx + 1, 0, g.ny,
+                detail::FaceAdvectionKernel{0, s, n, u_pres, u_imp, dt, g.dx, g.dy, options_.limiter});
+  for_each_cell("cip.advection.v", 0, g.nx, 0, g.ny + 1,
+                detail::FaceAdvectionKernel{1, s, n, v_pres, v_imp, dt, g.dx, g.dy, options_.limiter});
+  fill_ghosts(n, g, options_.boundaries);
+  time_ += dt;
+  ++steps_;
+}
+
+GasTotals GasSolver::totals() {
+  const ImmersedBoundaryView ib = immersed_boundary();
+  const detail::TotalsSum t = reduce_sum(
+      "cip.totals", static_cast<index_t>(grid_.nx) * grid_.ny, detail::TotalsSum{0, 0, 0, 0, 0},
+      detail::TotalsOfCell{state(), {ib.cell_active.data, ib.cell_active.shape}, grid_.nx, grid_.cell_area()});
+  GasTotals out;
+  out.mass = t.m;
+  out.momentum_x = t.mx;
+  out.momentum_y = t.my;
+  out.internal_energy = t.ei;
+  out.kinetic_energy = t.ek;
+  return out;
+}
+
+std::vector<GasSample> GasSolver::sample(const std::vector<std::array<double, 2>>& points) {
+  if (points.empty()) return {};
+  std::vector<double> xy(2 * points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    xy[2 * k] = points[k][0];
+    xy[2 * k + 1] = points[k][1];
+  }
+  DeviceVector<double> xy_d;
+  copy_from_host(xy_d, xy);
+  DeviceVector<GasSample> out_d(points.size());
+  for_each_index("cip.sample", static_cast<index_t>(points.size()),
+                 detail::SampleKernel{state(), grid_, eos_, device_ptr(xy_d), device_ptr(out_d)});
+  return blastsim::to_host(out_d);
+}
+
+HostGasFields GasSolver::to_host() {
+  const PaddedShape sh = grid_.padded_shape();
+  const std::vector<double> rho = blastsim::to_host(state_.rho.f), e = blastsim::to_host(state_.e.f);
+  const std::vector<double> u = blastsim::to_host(state_.u.f), v = blastsim::to_host(state_.v.f);
+  HostGasFields h;
+  h.nx = grid_.nx;
+  h.ny = grid_.ny;
+  const size_t n = static_cast<size_t>(grid_.nx) * grid_.ny;
+  h.rho.resize(n);
+  h.e.resize(n);
+  h.p.resize(n);
+  h.u.resize(n);
+  h.v.resize(n);
+  for (int j = 0; j < grid_.ny; ++j) {
+    for (int i = 0; i < grid_.nx; ++i) {
+      const size_t k = static_cast<size_t>(j) * grid_.nx + i;
+      h.rho[k] = rho[sh.offset(i, j)];
+      h.e[k] = e[sh.offset(i, j)];
+      h.p[k] = eos_.pressure(h.rho[k], h.e[k]);
+      h.u[k] = 0.5 * (u[sh.offset(i, j)] + u[sh.offset(i + 1, j)]);
+      h.v[k] = 0.5 * (v[sh.offset(i, j)] + v[sh.offset(i, j + 1)]);
+    }
+  }
+  return h;
+}
+
+std::string GasSolver::describe_invalid_cell() {
+  const PaddedShape sh = grid_.padded_shape();
+  const std::vector<double> rho = blastsim::to_host(state_.rho.f), e = blastsim::to_host(state_.e.f);
+  const std::vector<double> u = blastsim::to_host(state_.u.f), v = blastsim::to_host(state_.v.f);
+  const std::vector<std::uint8_t> active = blastsim::to_host(immersed_.cell_active);
+  for (int j = 0; j < grid_.ny; ++j) {
+    for (int i = 0; i < grid_.nx; ++i) {
+      const index_t k = sh.offset(i, j);
+      if (!active[k]) continue;
+      const char* what = nullptr;
+      double value = 0.0;
+      if (!(rho[k] > 0.0) || !std::isfinite(rho[k])) what = "density", value = rho[k];
+      else if (!(e[k] > 0.0) || !std::isfinite(e[k])) what = "internal energy", value = e[k];
+      else if (!std::isfinite(u[k])) what = "x-velocity", value = u[k];
+      else if (!std::isfinite(v[k])) what = "y-velocity", value = v[k];
+      if (what) {
+        std::ostringstream os;
+        os << what << " = " << value << " in cell (" << i << ", " << j << ") at x = " << grid_.cell_x(i)
+           << " m, y = " << grid_.cell_y(j) << " m";
+        return os.str();
+      }
+    }
+  }
+  return "";
+}
+
+void mark_static_solid(GasSolver& solver, const std::function<bool(double, double)>& inside) {
+  const GasGrid& g = solver.grid();
+  const PaddedShape sh = g.padded_shape();
+  std::vector<std::uint8_t> active(sh.size(), 1), up(sh.size(), 0), vp(sh.size(), 0);
+  for (int j = 0; j <= g.ny; ++j) {
+    for (int i = 0; i <= g.nx; ++i) {
+      if (j < g.ny && inside(g.face_x(i), g.cell_y(j))) up[sh.offset(i, j)] = 1;
+      if (i < g.nx && inside(g.cell_x(i), g.face_y(j))) vp[sh.offset(i, j)] = 1;
+    }
+  }
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      const bool all = up[sh.offset(i, j)] && up[sh.offset(i + 1, j)] && vp[sh.offset(i, j)] && vp[sh.offset(i, j + 1)];
+      if (all) active[sh.offset(i, j)] = 0;
+    }
+  }
+  ImmersedBoundaryView ib = solver.immersed_boundary();
+  thrust::copy(active.begin(), active.end(), thrust::device_pointer_cast(ib.cell_active.data));
+  thrust::copy(up.begin(), up.end(), thrust::device_pointer_cast(ib.u_prescribed.data));
+  thrust::copy(vp.begin(), vp.end(), thrust::device_pointer_cast(ib.v_prescribed.data));
+  thrust::fill(thrust::device, thrust::device_pointer_cast(ib.u_imposed.data),
+               thrust::device_pointer_cast(ib.u_imposed.data) + sh.size(), 0.0);
+  thrust::fill(thrust::device, thrust::device_pointer_cast(ib.v_imposed.data),
+               thrust::device_pointer_cast(ib.v_imposed.data) + sh.size(), 0.0);
+}
+
+}  // namespace blastsim::cip

@@ -1,0 +1,12 @@
+//! \file catch.hpp
+//! \brief One include for Catch2 v3 or v2 (Debian bookworm ships 2.13), so tests build with either.
+#pragma once
+#if __has_include(<catch2/catch_test_macros.hpp>)
+#include <catch2/catch_approx.hpp>
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_floating_point.hpp>
+#else
+#include <catch2/catch.hpp>
+#endif
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
