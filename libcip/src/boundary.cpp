@@ -53,20 +53,56 @@ BLAST_HD inline bool is_ghost(int k, int n, bool face_centred, BoundaryKind kind
 
 //! One thread per (ghost column, row): fills all four unknowns along x. Columns: -g..-1, 0 (boundary
 //! face), nx..nx+g (nx is the first cell ghost and the last face).
+//! Sets an outflow boundary face (value from outflow_face_from_state(), zero normal derivative).
+BLAST_HD inline void set_outflow_face(const CipFieldView& F, const GasStateView& s, const GasGrid& g,
+                                      const BoundaryContext& ctx, int side, int t) {
+  const bool xside = side == left || side == right;
+  const bool low = side == left || side == bottom;
+  const int k = low ? 0 : (xside ? g.nx : g.ny), ki = low ? 1 : k - 1;
+  const double w = (low ? -1.0 : 1.0) * outflow_face_from_state(s, g, ctx, side, t);
+  if (xside) {
+    F.f(k, t) = w;
+    F.gx(k, t) = 0.0;
+    F.gy(k, t) = F.gy(ki, t);
+  } else {
+    F.f(t, k) = w;
+    F.gy(t, k) = 0.0;
+    F.gx(t, k) = F.gx(t, ki);
+  }
+}
+
 struct FillGhostsX {
   GasStateView s;
-  int nx;
-  BoundaryKind lo, hi;
+  GasGrid grid;
+  BoundaryContext ctx;
   BLAST_HD void operator()(int c, int t) const {
-    const int g = GasGrid::ghost;
+    const int g = GasGrid::ghost, nx = grid.nx;
     const int k = c < g + 1 ? c - g : nx + (c - g - 1);  // c in [0, 2g + 2)
-    const BoundaryKind kind = k <= 0 ? lo : hi;
+    const BoundaryKind kind = ctx.bc.side[k <= 0 ? left : right];
     if (is_ghost(k, nx, false, kind)) {
       fill_one(s.rho, 0, k, t, nx, false, kind, 1.0);
       fill_one(s.e, 0, k, t, nx, false, kind, 1.0);
       fill_one(s.v, 0, k, t, nx, false, kind, 1.0);
     }
     if (is_ghost(k, nx, true, kind)) fill_one(s.u, 0, k, t, nx, true, kind, -1.0);
+  }
+};
+
+//! The outflow boundary faces go first: the ghost faces beyond them copy them.
+struct FillOutflowFaces {
+  GasStateView s;
+  GasGrid grid;
+  BoundaryContext ctx;
+  BLAST_HD void operator()(index_t k) const {
+    const int nx = grid.nx, ny = grid.ny;
+    if (k < 2 * ny) {
+      const int side = k < ny ? left : right, t = static_cast<int>(k < ny ? k : k - ny);
+      if (t < ny && ctx.bc.side[side] == BoundaryKind::outflow) set_outflow_face(s.u, s, grid, ctx, side, t);
+    } else {
+      const index_t m = k - 2 * ny;
+      const int side = m < nx ? bottom : top, t = static_cast<int>(m < nx ? m : m - nx);
+      if (ctx.bc.side[side] == BoundaryKind::outflow) set_outflow_face(s.v, s, grid, ctx, side, t);
+    }
   }
 };
 
@@ -91,11 +127,13 @@ struct FillGhostsY {
 }  // namespace detail
 
 //! Fills the ghosts of a state (used on the current and on the starred state).
-void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryConditions& bc) {
+void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryContext& ctx) {
   const int g = GasGrid::ghost;
+  const BoundaryConditions& bc = ctx.bc;
+  for_each_index("cip.ghosts.outflow_faces", 2 * static_cast<index_t>(grid.nx + grid.ny),
+                 detail::FillOutflowFaces{s, grid, ctx});
   // x pass over the logical rows [0, ny] (cells 0..ny-1 and y-faces 0..ny).
-  for_each_cell("cip.ghosts.x", 0, 2 * g + 2, 0, grid.ny + 1,
-                detail::FillGhostsX{s, grid.nx, bc.side[left], bc.side[right]});
+  for_each_cell("cip.ghosts.x", 0, 2 * g + 2, 0, grid.ny + 1, detail::FillGhostsX{s, grid, ctx});
   // y pass over every column of the padded array.
   for_each_cell("cip.ghosts.y", -g, grid.nx + 1 + g, 0, 2 * g + 2,
                 detail::FillGhostsY{s, grid.ny, bc.side[bottom], bc.side[top]});

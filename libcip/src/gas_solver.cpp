@@ -31,7 +31,7 @@ BLAST_HD inline void store(const CipFieldView& F, int i, int j, const CipPoint& 
   F.gy(i, j) = p.gy;
 }
 
-//! P = p + q at cell centres over [-1, nx] x [-1, ny] (paper eqs. 4-5). Inactive cells get q = 0.
+//! P = p + q at the cell centres (paper eqs. 4-5). Inactive cells get q = 0.
 struct PressureKernel {
   GasStateView s;
   Field2D<const std::uint8_t> active;
@@ -46,21 +46,48 @@ struct PressureKernel {
   }
 };
 
+//! P in the ghost cells next to the four sides (pressure_ghost()); k runs over 2 nx + 2 ny boundary cells.
+struct PressureGhostKernel {
+  Field2D<double> P;
+  int nx, ny;
+  BoundaryConditions bc;
+  BLAST_HD void operator()(index_t k) const {
+    if (k < 2 * ny) {  // left and right sides, row j
+      const int j = static_cast<int>(k / 2);
+      if (k % 2 == 0) P(-1, j) = pressure_ghost(bc.side[left], P(0, j), P(nx - 1, j));
+      else P(nx, j) = pressure_ghost(bc.side[right], P(nx - 1, j), P(0, j));
+    } else {  // bottom and top sides, column i
+      const index_t m = k - 2 * ny;
+      const int i = static_cast<int>(m / 2);
+      if (m % 2 == 0) P(i, -1) = pressure_ghost(bc.side[bottom], P(i, 0), P(i, ny - 1));
+      else P(i, ny) = pressure_ghost(bc.side[top], P(i, ny - 1), P(i, 0));
+    }
+  }
+};
+
 //! Non-advection phase for a face velocity (axis 0: u on x-faces, axis 1: v on y-faces):
 //! u* = u - dt (P_i - P_{i-1}) / (dx (rho_{i-1} + rho_i)/2)   (paper eq. 2 without advection).
-//! A prescribed face takes the solid's velocity; a face beside an inactive cell feels no pressure force.
+//! A prescribed face takes the solid's velocity; a face beside an inactive cell feels no pressure force;
+//! an outflow boundary face follows the characteristic condition (outflow_face_velocity()).
 struct FaceVelocityKernel {
   int axis;
-  CipFieldView vel;     // u or v, current
+  GasStateView old;
   Field2D<double> out;  // u* or v*
   Field2D<const double> rho, P;
   Field2D<const std::uint8_t> active, prescribed;
   Field2D<const double> imposed;
-  double dt, h;
+  GasGrid grid;
+  BoundaryContext ctx;
+  double dt;
   BLAST_HD void operator()(int i, int j) const {
     const int im = axis == 0 ? i - 1 : i, jm = axis == 0 ? j : j - 1;
-    double w = vel.f(i, j);
-    if (prescribed(i, j)) {
+    const int k = axis == 0 ? i : j, n = axis == 0 ? grid.nx : grid.ny, t = axis == 0 ? j : i;
+    const double h = axis == 0 ? grid.dx : grid.dy;
+    double w = (axis == 0 ? old.u : old.v).f(i, j);
+    const int side = axis == 0 ? (k == 0 ? left : right) : (k == 0 ? bottom : top);
+    if ((k == 0 || k == n) && ctx.bc.side[side] == BoundaryKind::outflow) {
+      w = (k == 0 ? -1.0 : 1.0) * outflow_face_from_state(old, grid, ctx, side, t);
+    } else if (prescribed(i, j)) {
       w = imposed(i, j);
     } else if (active(im, jm) && active(i, j)) {
       w -= dt * (P(i, j) - P(im, jm)) / (h * 0.5 * (rho(im, jm) + rho(i, j)));
@@ -232,6 +259,29 @@ struct FaceAdvectionKernel {
   }
 };
 
+//! Monotonised-central slope (van Leer's MC limiter) from the left and right differences: the centred
+//! difference where the data are smooth, zero at an extremum and next to a constant state.
+BLAST_HD inline double mc_slope(double left_diff, double right_diff) {
+  if (left_diff * right_diff <= 0.0) return 0.0;
+  const double c = 0.5 * (left_diff + right_diff);
+  const double m = 2.0 * (fabs(left_diff) < fabs(right_diff) ? left_diff : right_diff);
+  return fabs(c) < fabs(m) ? c : m;
+}
+
+//! Initial derivatives of the four CIP unknowns from their values (mc_slope() in x and in y).
+struct InitialDerivativesKernel {
+  GasStateView s;
+  double dx, dy;
+  BLAST_HD void operator()(int i, int j) const {
+    const CipFieldView* fields[4] = {&s.rho, &s.e, &s.u, &s.v};
+    for (const CipFieldView* F : fields) {
+      const Field2D<double>& f = F->f;
+      F->gx(i, j) = mc_slope(f(i, j) - f(i - 1, j), f(i + 1, j) - f(i, j)) / dx;
+      F->gy(i, j) = mc_slope(f(i, j) - f(i, j - 1), f(i, j + 1) - f(i, j)) / dy;
+    }
+  }
+};
+
 //! Signal rate max((|u_c| + c)/dx, (|v_c| + c)/dy) [1/s] of one cell; +inf for an invalid active cell.
 struct SignalRate {
   GasStateView s;
@@ -327,6 +377,8 @@ GasSolver::GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasS
   starred_.resize(n);
   immersed_.resize(n);
   pressure_.assign(n, 0.0);
+  outflow_pressure_.assign(2 * static_cast<size_t>(grid.nx + grid.ny), 0.0);
+  outflow_velocity_.assign(2 * static_cast<size_t>(grid.nx + grid.ny), 0.0);
 }
 
 void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_at) {
@@ -343,6 +395,23 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
       if (i < grid_.nx) v[sh.offset(i, j)] = state_at(grid_.cell_x(i), grid_.face_y(j)).velocity_y;
     }
   }
+  // Reference state of the outflow faces (OutflowReference order): the initial boundary state.
+  const int nx = grid_.nx, ny = grid_.ny;
+  std::vector<double> p_ref(2 * static_cast<size_t>(nx + ny)), w_ref(p_ref.size());
+  for (int j = 0; j < ny; ++j) {
+    p_ref[j] = eos_.pressure(rho[sh.offset(0, j)], e[sh.offset(0, j)]);
+    w_ref[j] = -u[sh.offset(0, j)];
+    p_ref[ny + j] = eos_.pressure(rho[sh.offset(nx - 1, j)], e[sh.offset(nx - 1, j)]);
+    w_ref[ny + j] = u[sh.offset(nx, j)];
+  }
+  for (int i = 0; i < nx; ++i) {
+    p_ref[2 * ny + i] = eos_.pressure(rho[sh.offset(i, 0)], e[sh.offset(i, 0)]);
+    w_ref[2 * ny + i] = -v[sh.offset(i, 0)];
+    p_ref[2 * ny + nx + i] = eos_.pressure(rho[sh.offset(i, ny - 1)], e[sh.offset(i, ny - 1)]);
+    w_ref[2 * ny + nx + i] = v[sh.offset(i, ny)];
+  }
+  copy_from_host(outflow_pressure_, p_ref);
+  copy_from_host(outflow_velocity_, w_ref);
   state_.resize(sh.size());
   copy_from_host(state_.rho.f, rho);
   copy_from_host(state_.e.f, e);
@@ -351,9 +420,18 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
   time_ = 0.0;
   steps_ = 0;
   apply_boundaries();
+  // Derivatives: zero in uniform regions and next to jumps between them (the paper's Table 1), centred
+  // differences where the initial data are smooth (zero there would cost CIP its order of accuracy).
+  for_each_cell("cip.initial_derivatives", 0, grid_.nx + 1, 0, grid_.ny + 1,
+                detail::InitialDerivativesKernel{state(), grid_.dx, grid_.dy});
+  apply_boundaries();
 }
 
-void GasSolver::apply_boundaries() { fill_ghosts(state(), grid_, options_.boundaries); }
+void GasSolver::apply_boundaries() { fill_ghosts(state(), grid_, boundary_context()); }
+
+BoundaryContext GasSolver::boundary_context() const {
+  return {options_.boundaries, eos_, {device_ptr(outflow_pressure_), device_ptr(outflow_velocity_)}};
+}
 
 double GasSolver::max_signal_rate() {
   const GasStateView s = state();
@@ -377,24 +455,27 @@ void GasSolver::step(double dt) {
   const Field2D<const double> us{s.u.f.data, sh}, vs{s.v.f.data, sh};
 
   // 1. Boundary values, then P = p + q (paper eqs. 4-5).
-  fill_ghosts(n, g, options_.boundaries);
-  for_each_cell("cip.pressure", -1, g.nx + 1, -1, g.ny + 1,
+  fill_ghosts(n, g, boundary_context());
+  for_each_cell("cip.pressure", 0, g.nx, 0, g.ny,
                 detail::PressureKernel{n, active, P, eos_, options_.viscosity.linear, options_.viscosity.quadratic});
+  for_each_index("cip.pressure.ghosts", 2 * static_cast<index_t>(g.nx + g.ny),
+                 detail::PressureGhostKernel{P, g.nx, g.ny, options_.boundaries});
   // 2. Non-advection phase: face velocities, then density and energy (paper eqs. 1-3).
+  const BoundaryContext ctx = boundary_context();
   for_each_cell("cip.face_velocity.u", 0, g.nx + 1, 0, g.ny,
-                detail::FaceVelocityKernel{0, n.u, s.u.f, rho_n, Pc, active, u_pres, u_imp, dt, g.dx});
+                detail::FaceVelocityKernel{0, n, s.u.f, rho_n, Pc, active, u_pres, u_imp, g, ctx, dt});
   for_each_cell("cip.face_velocity.v", 0, g.nx, 0, g.ny + 1,
-                detail::FaceVelocityKernel{1, n.v, s.v.f, rho_n, Pc, active, v_pres, v_imp, dt, g.dy});
+                detail::FaceVelocityKernel{1, n, s.v.f, rho_n, Pc, active, v_pres, v_imp, g, ctx, dt});
   for_each_cell("cip.cell_nonadvection", 0, g.nx, 0, g.ny,
                 detail::CellNonAdvectionKernel{n, s.rho.f, s.e.f, us, vs, Pc, active, dt, g.dx, g.dy});
-  fill_ghosts(s, g, options_.boundaries);
+  fill_ghosts(s, g, ctx);
   // 3. Derivative update (Yabe, Xiao & Utsumi 2001).
   for_each_cell("cip.derivatives.cell", 0, g.nx, 0, g.ny, detail::CellDerivativeKernel{n, s, active, dt, g.dx, g.dy});
   for_each_cell("cip.derivatives.u", 0, g.nx + 1, 0, g.ny,
                 detail::FaceDerivativeKernel{0, n, s, u_pres, dt, g.dx, g.dy});
   for_each_cell("cip.derivatives.v", 0, g.nx, 0, g.ny + 1,
                 detail::FaceDerivativeKernel{1, n, s, v_pres, dt, g.dx, g.dy});
-  fill_ghosts(s, g, options_.boundaries);
+  fill_ghosts(s, g, ctx);
   // 4. CIP advection of values and derivatives with the updated velocity, back into the current state.
   for_each_cell("cip.advection.cell", 0, g.nx, 0, g.ny,
                 detail::CellAdvectionKernel{s, n, active, dt, g.dx, g.dy, options_.limiter});
@@ -402,7 +483,7 @@ void GasSolver::step(double dt) {
                 detail::FaceAdvectionKernel{0, s, n, u_pres, u_imp, dt, g.dx, g.dy, options_.limiter});
   for_each_cell("cip.advection.v", 0, g.nx, 0, g.ny + 1,
                 detail::FaceAdvectionKernel{1, s, n, v_pres, v_imp, dt, g.dx, g.dy, options_.limiter});
-  fill_ghosts(n, g, options_.boundaries);
+  fill_ghosts(n, g, ctx);
   time_ += dt;
   ++steps_;
 }

@@ -39,7 +39,8 @@ struct GhostSource {
 //! Ghost rule along one direction for index k outside the valid range (or on a boundary face).
 //! n: cells in that direction; face_centred: the variable sits on faces 0..n in that direction;
 //! parity: +1 for variables even under a mirror at the boundary, -1 for the normal velocity.
-//! Rules: outflow copies the nearest valid point with zero normal derivative; wall mirrors about the
+//! Rules: outflow copies the nearest valid point with zero normal derivative (an outflow boundary face
+//! itself is advanced by the solver, see pressure_ghost()); wall mirrors about the
 //! boundary (value * parity, normal derivative * -parity) and sets an odd variable to zero on the wall
 //! face; periodic wraps by n.
 BLAST_HD inline GhostSource ghost_source(int k, int n, bool face_centred, BoundaryKind kind, double parity) {
@@ -60,5 +61,31 @@ BLAST_HD inline GhostSource ghost_source(int k, int n, bool face_centred, Bounda
       return {low ? 0 : n - 1, 1.0, 0.0, 1.0};
   }
 }
+
+//! Pressure P = p + q in the ghost cell beyond boundary cell b: periodic takes the wrapped cell, the others
+//! copy P_b (an outflow boundary face does not use it: see outflow_face_velocity()).
+BLAST_HD inline double pressure_ghost(BoundaryKind kind, double P_b, double P_wrapped) {
+  return kind == BoundaryKind::periodic ? P_wrapped : P_b;
+}
+
+//! Outward-normal velocity [m/s] of an outflow boundary face (non-reflecting, characteristic form).
+//! Subsonic: the incoming acoustic characteristic keeps its reference value, w - p/(rho c) = w_ref -
+//! p_ref/(rho c) (Thompson, JCP 68 (1987) 1, linearised), so an outgoing plane wave leaves without
+//! reflection. Supersonic outflow (w_inner >= c): every characteristic leaves, the face copies its inner
+//! neighbour. p_face is the pressure extrapolated to the face; rho, c those of the boundary cell.
+//! Freezing the face instead (zero pressure gradient) would reflect an outgoing wave like a wall.
+BLAST_HD inline double outflow_face_velocity(double w_inner, double w_ref, double p_face, double p_ref,
+                                             double rho, double c) {
+  if (w_inner >= c) return w_inner;
+  return w_ref + (p_face - p_ref) / (rho * c);
+}
+
+//! Reference (far-field) state of the outflow faces, one entry per boundary face in the order left rows
+//! [0, ny), right rows [ny, 2 ny), bottom columns [2 ny, 2 ny + nx), top columns [2 ny + nx, 2 ny + 2 nx):
+//! the pressure [Pa] of the adjacent cell and the outward-normal face velocity [m/s] at the start.
+struct OutflowReference {
+  const double* pressure = nullptr;
+  const double* velocity = nullptr;
+};
 
 }  // namespace blastsim::cip

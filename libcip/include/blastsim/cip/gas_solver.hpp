@@ -15,6 +15,8 @@
 
 namespace blastsim::cip {
 
+struct BoundaryContext;
+
 //! Coefficients of the artificial viscosity, paper eq. (4). The paper does not give them. The defaults
 //! c1 = 1, c2 = 2 were chosen by measurement (docs/gas-solver.md): with the common c1 = 0.5, c2 = 1 the
 //! non-conservative form runs the shock of the paper's 277:1 jump 2.6 % slow; with 1 and 2 it is 0.8 %.
@@ -74,8 +76,9 @@ class GasSolver {
   double time() const { return time_; }          //!< [s] simulated time
   long long steps() const { return steps_; }     //!< steps taken
 
-  //! Sets rho, e at cell centres and u, v at their faces from a host function of position [m]; all
-  //! derivatives zero (paper, Table 1); fills the ghosts.
+  //! Sets rho, e at cell centres and u, v at their faces from a host function of position [m]; the
+  //! derivatives from limited centred differences (zero in uniform regions and beside jumps between
+  //! them, as in the paper's Table 1); fills the ghosts. Also takes the outflow reference state.
   void initialise(const std::function<GasPoint(double x, double y)>& state_at);
 
   GasStateView state() { return state_.view(grid_.padded_shape()); }
@@ -103,6 +106,7 @@ class GasSolver {
   std::string describe_invalid_cell();
 
  private:
+  BoundaryContext boundary_context() const;
   GasGrid grid_;
   EquationOfState eos_;
   GasSolverOptions options_;
@@ -110,6 +114,7 @@ class GasSolver {
   GasState starred_;    // after the non-advection phase (*)
   ImmersedBoundaryArrays immersed_;
   DeviceVector<double> pressure_;  // P = p + q
+  DeviceVector<double> outflow_pressure_, outflow_velocity_;  // OutflowReference, set by initialise()
   double time_ = 0.0;
   long long steps_ = 0;
 };
