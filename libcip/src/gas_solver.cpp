@@ -521,6 +521,7 @@ HostGasFields GasSolver::to_host() {
   const PaddedShape sh = grid_.padded_shape();
   const std::vector<double> rho = blastsim::to_host(state_.rho.f), e = blastsim::to_host(state_.e.f);
   const std::vector<double> u = blastsim::to_host(state_.u.f), v = blastsim::to_host(state_.v.f);
+  const std::vector<std::uint8_t> active = blastsim::to_host(immersed_.cell_active);
   HostGasFields h;
   h.nx = grid_.nx;
   h.ny = grid_.ny;
@@ -530,6 +531,7 @@ HostGasFields GasSolver::to_host() {
   h.p.resize(n);
   h.u.resize(n);
   h.v.resize(n);
+  h.active.resize(n);
   for (int j = 0; j < grid_.ny; ++j) {
     for (int i = 0; i < grid_.nx; ++i) {
       const size_t k = static_cast<size_t>(j) * grid_.nx + i;
@@ -538,6 +540,7 @@ HostGasFields GasSolver::to_host() {
       h.p[k] = eos_.pressure(h.rho[k], h.e[k]);
       h.u[k] = 0.5 * (u[sh.offset(i, j)] + u[sh.offset(i + 1, j)]);
       h.v[k] = 0.5 * (v[sh.offset(i, j)] + v[sh.offset(i, j + 1)]);
+      h.active[k] = active[sh.offset(i, j)];
     }
   }
   return h;

@@ -62,6 +62,7 @@ struct GasTotals {
 struct HostGasFields {
   int nx = 0, ny = 0;
   std::vector<double> rho, u, v, p, e;
+  std::vector<std::uint8_t> active;  //!< 1 where the cell is advanced, 0 where inactive (immersed solid)
 };
 
 //! One gas solver on one grid. The state lives in device memory; state() and immersed_boundary() expose

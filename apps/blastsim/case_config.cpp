@@ -1,0 +1,156 @@
+//! \file case_config.cpp
+//! \brief Reads the driver's TOML input into a CaseConfig; docs/input.md documents every key read here.
+#include "case_config.hpp"
+
+#include "blastsim/core/error.hpp"
+#include "input_reader.hpp"
+
+#include <fmt/format.h>
+
+namespace blastsim::app {
+
+bool GasRegion::contains(double x, double y) const {
+  if (shape == Shape::circle) {
+    const double dx = x - center[0], dy = y - center[1];
+    return dx * dx + dy * dy <= radius * radius;
+  }
+  return x >= min[0] && x <= max[0] && y >= min[1] && y <= max[1];
+}
+
+cip::GasPoint CaseConfig::initial_state(double x, double y) const {
+  for (auto it = regions.rbegin(); it != regions.rend(); ++it)
+    if (it->contains(x, y)) return it->state;
+  return ambient;
+}
+
+namespace {
+
+//! A gas state: density and exactly one of internal_energy / pressure, optional velocity.
+cip::GasPoint read_state(TableReader& t, const cip::EquationOfState& eos) {
+  cip::GasPoint s{};
+  s.density = t.number("density", "kg/m3", Range::positive());
+  const bool has_e = t.has("internal_energy"), has_p = t.has("pressure");
+  if (has_e == has_p)
+    throw InputError(fmt::format("{}: give exactly one of 'internal_energy' [J/kg] or 'pressure' [Pa]", t.path()));
+  if (has_e) {
+    s.internal_energy = t.number("internal_energy", "J/kg", Range::positive());
+    t.optional_number("pressure", "Pa", Range::positive());
+  } else {
+    t.optional_number("internal_energy", "J/kg", Range::positive());
+    s.internal_energy = eos.internal_energy(s.density, t.number("pressure", "Pa", Range::positive()));
+  }
+  const std::array<double, 2> v = t.pair("velocity", "m/s", std::array<double, 2>{0.0, 0.0});
+  s.velocity_x = v[0];
+  s.velocity_y = v[1];
+  return s;
+}
+
+cip::BoundaryKind read_boundary(TableReader& t, const char* side) {
+  cip::BoundaryKind k{};
+  cip::parse_boundary_kind(t.text(side, {"outflow", "wall", "periodic"}, std::string("outflow")), k);
+  return k;
+}
+
+}  // namespace
+
+CaseConfig read_case(const toml::table& input) {
+  CaseConfig c;
+  TableReader root(input, "", c.echo);
+
+  TableReader domain = root.table("domain", true);
+  const long long nx = domain.integer("nx", "cells", 3), ny = domain.integer("ny", "cells", 3);
+  const double x0 = domain.number("x_min", "m", Range::any()), x1 = domain.number("x_max", "m", Range::above(x0));
+  const double y0 = domain.number("y_min", "m", Range::any()), y1 = domain.number("y_max", "m", Range::above(y0));
+  domain.finish();
+  c.grid = cip::GasGrid::from_box(static_cast<int>(nx), static_cast<int>(ny), x0, x1, y0, y1);
+
+  TableReader gas = root.table("gas", true);
+  c.eos = cip::EquationOfState::ideal(gas.number("gamma", "", Range::above(1.0), 1.4));
+  c.courant = gas.number("courant", "", Range::half_open(0.0, 1.0), 0.1);
+  c.solver.viscosity.linear = gas.number("viscosity_linear", "", Range::non_negative(), 1.0);
+  c.solver.viscosity.quadratic = gas.number("viscosity_quadratic", "", Range::non_negative(), 2.0);
+  c.solver.limiter =
+      gas.text("limiter", {"minmax", "none"}, std::string("minmax")) == "none" ? cip::Limiter::none : cip::Limiter::minmax;
+  TableReader bc = gas.table("boundary");
+  c.solver.boundaries.side = {read_boundary(bc, "left"), read_boundary(bc, "right"), read_boundary(bc, "bottom"),
+                              read_boundary(bc, "top")};
+  bc.finish();
+  for (int a = 0; a < 2; ++a)
+    if ((c.solver.boundaries.side[2 * a] == cip::BoundaryKind::periodic) !=
+        (c.solver.boundaries.side[2 * a + 1] == cip::BoundaryKind::periodic))
+      throw InputError(fmt::format("gas.boundary.{} and gas.boundary.{} must both be \"periodic\" or neither",
+                                   a == 0 ? "left" : "bottom", a == 0 ? "right" : "top"));
+  TableReader ambient = gas.table("ambient", true);
+  c.ambient = read_state(ambient, c.eos);
+  ambient.finish();
+  for (TableReader& r : gas.table_array("region")) {
+    GasRegion region;
+    const std::string shape = r.text("shape", {"box", "circle"});
+    if (shape == "circle") {
+      region.shape = GasRegion::Shape::circle;
+      region.center = r.pair("center", "m");
+      region.radius = r.number("radius", "m", Range::positive());
+    } else {
+      region.min = r.pair("min", "m");
+      region.max = r.pair("max", "m");
+      if (!(region.max[0] > region.min[0]) || !(region.max[1] > region.min[1]))
+        throw InputError(fmt::format("{}: box needs max > min in x and y", r.path()));
+    }
+    region.state = read_state(r, c.eos);
+    r.finish();
+    c.regions.push_back(region);
+  }
+  gas.finish();
+
+  TableReader time = root.table("time", true);
+  c.end_time = time.number("end", "s", Range::positive());
+  c.fixed_dt = time.optional_number("dt", "s", Range::positive());
+  c.max_steps = time.integer("max_steps", "", 0, 0);
+  time.finish();
+
+  TableReader out = root.table("output");
+  c.output_directory = out.text("directory", {}, std::string("output"));
+  if (c.output_directory.empty()) throw InputError("output.directory must not be empty");
+  c.output_interval = out.number("interval", "s", Range::non_negative(), 0.0);
+  c.vtk = out.boolean("vtk", true);
+  c.progress_interval = out.number("progress_interval", "s (wall)", Range::non_negative(), 2.0);
+  out.finish();
+
+  TableReader probe = root.table("probe");
+  for (TableReader& p : probe.table_array("line")) {
+    LineProbe l;
+    l.name = p.text("name", {});
+    l.start = p.pair("start", "m");
+    l.end = p.pair("end", "m");
+    l.points = static_cast<int>(p.integer("points", "", 2, 101));
+    l.times = p.number_list("times", "s", Range::non_negative());
+    p.finish();
+    c.line_probes.push_back(l);
+  }
+  for (TableReader& p : probe.table_array("point")) {
+    PointProbe q;
+    q.name = p.text("name", {});
+    q.position = p.pair("position", "m");
+    q.interval = p.number("interval", "s", Range::positive());
+    p.finish();
+    c.point_probes.push_back(q);
+  }
+  probe.finish();
+  auto check_name = [](const std::string& kind, const std::string& name) {
+    if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                            std::string::npos)
+      throw InputError(fmt::format("probe.{} name \"{}\": use letters, digits, '_' or '-' only", kind, name));
+  };
+  for (const LineProbe& l : c.line_probes) check_name("line", l.name);
+  for (const PointProbe& q : c.point_probes) check_name("point", q.name);
+  root.finish();
+  return c;
+}
+
+CaseConfig load_case(const std::string& input_path, const std::vector<std::string>& overrides) {
+  toml::table input = parse_input_file(input_path);
+  for (const std::string& o : overrides) apply_override(input, o);
+  return read_case(input);
+}
+
+}  // namespace blastsim::app

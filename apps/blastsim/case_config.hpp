@@ -1,0 +1,74 @@
+//! \file case_config.hpp
+//! \brief The driver's case description (domain, gas states, time, output, probes) read from a TOML input.
+#pragma once
+
+#include "blastsim/cip/gas_solver.hpp"
+#include "input_reader.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace blastsim::app {
+
+//! A region of the initial gas state (later regions overwrite earlier ones).
+struct GasRegion {
+  enum class Shape { box, circle } shape = Shape::box;
+  std::array<double, 2> min{}, max{};  //!< [m] box corners
+  std::array<double, 2> center{};      //!< [m] circle centre
+  double radius = 0.0;                 //!< [m] circle radius
+  cip::GasPoint state{};
+  bool contains(double x, double y) const;
+};
+
+//! Values along a segment at chosen times, written as CSV (x,y,rho,u,v,p,e).
+struct LineProbe {
+  std::string name;
+  std::array<double, 2> start{}, end{};  //!< [m]
+  int points = 0;
+  std::vector<double> times;  //!< [s]
+};
+
+//! Time series at a point, written as CSV (t,x,y,rho,u,v,p,e).
+struct PointProbe {
+  std::string name;
+  std::array<double, 2> position{};  //!< [m]
+  double interval = 0.0;             //!< [s] between samples
+};
+
+struct CaseConfig {
+  // [domain]
+  cip::GasGrid grid;
+  // [gas]
+  cip::EquationOfState eos;
+  cip::GasSolverOptions solver;
+  double courant = 0.1;  //!< [-] dt = courant / max signal rate, or the limit a fixed dt must respect
+  cip::GasPoint ambient{};
+  std::vector<GasRegion> regions;
+  // [time]
+  double end_time = 0.0;                //!< [s]
+  std::optional<double> fixed_dt;       //!< [s]
+  long long max_steps = 0;              //!< 0: no limit
+  // [output]
+  std::string output_directory;
+  double output_interval = 0.0;         //!< [s] between field snapshots; 0: start and end only
+  bool vtk = true;
+  double progress_interval = 2.0;       //!< [s of wall time] between progress lines
+  std::vector<LineProbe> line_probes;
+  std::vector<PointProbe> point_probes;
+  //! The resolved configuration, one "key = value unit" line per key (defaults marked).
+  std::vector<std::string> echo;
+
+  //! Initial state at a point: the last region containing it, else the ambient state.
+  cip::GasPoint initial_state(double x, double y) const;
+};
+
+//! Reads and validates a case; `overrides` are "section.key=value" strings applied first. Throws
+//! InputError (one line naming the key, the value and what is allowed) on any bad input.
+CaseConfig load_case(const std::string& input_path, const std::vector<std::string>& overrides);
+
+//! Same from an already parsed table (tests).
+CaseConfig read_case(const toml::table& input);
+
+}  // namespace blastsim::app

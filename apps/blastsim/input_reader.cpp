@@ -1,0 +1,266 @@
+//! \file input_reader.cpp
+//! \brief Strict TOML input reading: ranges, types, unknown keys, command-line overrides.
+#include "input_reader.hpp"
+
+#include "blastsim/core/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace blastsim::app {
+
+namespace {
+std::string show(double v) { return fmt::format("{:g}", v); }
+const char* type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date/time";
+  }
+}
+std::string with_unit(const std::string& v, const char* unit) {
+  return unit && *unit ? v + " " + unit : v;
+}
+}  // namespace
+
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  const bool lo_ok = lo_open ? v > lo : v >= lo;
+  const bool hi_ok = hi_open ? v < hi : v <= hi;
+  return lo_ok && hi_ok;
+}
+
+std::string Range::describe() const {
+  const bool has_lo = lo > -1e307, has_hi = hi < 1e307;
+  if (has_lo && has_hi)
+    return fmt::format("in {}{}, {}{}", lo_open ? "(" : "[", show(lo), show(hi), hi_open ? ")" : "]");
+  if (has_lo) return fmt::format("{} {}", lo_open ? ">" : ">=", show(lo));
+  if (has_hi) return fmt::format("{} {}", hi_open ? "<" : "<=", show(hi));
+  return "any finite number";
+}
+
+TableReader::TableReader(const toml::table& table, std::string path, std::vector<std::string>& echo)
+    : table_(&table), path_(std::move(path)), echo_(&echo) {}
+
+const toml::node* TableReader::find(const std::string& key) {
+  known_.push_back(key);
+  return table_->get(key);
+}
+
+bool TableReader::has(const std::string& key) const { return table_->get(key) != nullptr; }
+
+void TableReader::missing(const std::string& key, const std::string& what) const {
+  throw InputError(fmt::format("missing required key '{}' ({})", key_path(key), what));
+}
+
+double TableReader::number(const std::string& key, const char* unit, Range range, std::optional<double> fallback) {
+  const toml::node* n = find(key);
+  double v;
+  if (!n) {
+    if (!fallback) missing(key, fmt::format("a number {}{}", range.describe(), unit && *unit ? std::string(" [") + unit + "]" : ""));
+    v = *fallback;
+  } else if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
+    v = *d;
+  } else {
+    throw InputError(fmt::format("{} must be a number, got {}", key_path(key), type_name(*n)));
+  }
+  if (!range.contains(v))
+    throw InputError(fmt::format("{} = {}: must be {}", key_path(key), with_unit(show(v), unit), range.describe()));
+  echo_->push_back(fmt::format("{} = {}{}", key_path(key), with_unit(show(v), unit), n ? "" : "   (default)"));
+  return v;
+}
+
+std::optional<double> TableReader::optional_number(const std::string& key, const char* unit, Range range) {
+  if (!has(key)) {
+    known_.push_back(key);
+    return std::nullopt;
+  }
+  return number(key, unit, range);
+}
+
+long long TableReader::integer(const std::string& key, const char* unit, long long min_value,
+                               std::optional<long long> fallback) {
+  const toml::node* n = find(key);
+  long long v;
+  if (!n) {
+    if (!fallback) missing(key, fmt::format("an integer >= {}", min_value));
+    v = *fallback;
+  } else if (n->is_integer()) {
+    v = *n->value<long long>();
+  } else {
+    throw InputError(fmt::format("{} must be an integer, got {}", key_path(key), type_name(*n)));
+  }
+  if (v < min_value)
+    throw InputError(fmt::format("{} = {}: must be an integer >= {}", key_path(key), v, min_value));
+  echo_->push_back(fmt::format("{} = {}{}", key_path(key), with_unit(std::to_string(v), unit), n ? "" : "   (default)"));
+  return v;
+}
+
+bool TableReader::boolean(const std::string& key, std::optional<bool> fallback) {
+  const toml::node* n = find(key);
+  bool v;
+  if (!n) {
+    if (!fallback) missing(key, "true or false");
+    v = *fallback;
+  } else if (n->is_boolean()) {
+    v = *n->value<bool>();
+  } else {
+    throw InputError(fmt::format("{} must be true or false, got {}", key_path(key), type_name(*n)));
+  }
+  echo_->push_back(fmt::format("{} = {}{}", key_path(key), v ? "true" : "false", n ? "" : "   (default)"));
+  return v;
+}
+
+std::string TableReader::text(const std::string& key, const std::vector<std::string>& allowed,
+                              std::optional<std::string> fallback) {
+  const toml::node* n = find(key);
+  std::string list;
+  for (const std::string& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+  std::string v;
+  if (!n) {
+    if (!fallback) missing(key, "one of " + list);
+    v = *fallback;
+  } else if (n->is_string()) {
+    v = *n->value<std::string>();
+  } else {
+    throw InputError(fmt::format("{} must be a string (one of {}), got {}", key_path(key), list, type_name(*n)));
+  }
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), v) == allowed.end())
+    throw InputError(fmt::format("{} = \"{}\": must be one of {}", key_path(key), v, list));
+  echo_->push_back(fmt::format("{} = \"{}\"{}", key_path(key), v, n ? "" : "   (default)"));
+  return v;
+}
+
+std::array<double, 2> TableReader::pair(const std::string& key, const char* unit,
+                                        std::optional<std::array<double, 2>> fallback) {
+  const toml::node* n = find(key);
+  std::array<double, 2> v{};
+  if (!n) {
+    if (!fallback) missing(key, fmt::format("[x, y]{}", unit && *unit ? std::string(" [") + unit + "]" : ""));
+    v = *fallback;
+  } else {
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 2 || !(*a)[0].value<double>() || !(*a)[1].value<double>())
+      throw InputError(fmt::format("{} must be an array of two numbers [x, y]", key_path(key)));
+    v = {*(*a)[0].value<double>(), *(*a)[1].value<double>()};
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]))
+      throw InputError(fmt::format("{} must hold finite numbers", key_path(key)));
+  }
+  echo_->push_back(fmt::format("{} = [{}, {}]{}{}", key_path(key), show(v[0]), show(v[1]),
+                               unit && *unit ? std::string(" ") + unit : "", n ? "" : "   (default)"));
+  return v;
+}
+
+std::vector<double> TableReader::number_list(const std::string& key, const char* unit, Range range) {
+  const toml::node* n = find(key);
+  std::vector<double> out;
+  if (!n) missing(key, fmt::format("an array of numbers {}", range.describe()));
+  const toml::array* a = n->as_array();
+  if (!a) throw InputError(fmt::format("{} must be an array of numbers", key_path(key)));
+  std::string shown;
+  for (const toml::node& e : *a) {
+    const auto d = e.value<double>();
+    if (!d) throw InputError(fmt::format("{} must be an array of numbers, found {}", key_path(key), type_name(e)));
+    if (!range.contains(*d))
+      throw InputError(fmt::format("{} holds {}: every entry must be {}", key_path(key), with_unit(show(*d), unit),
+                                   range.describe()));
+    out.push_back(*d);
+    shown += (shown.empty() ? "" : ", ") + show(*d);
+  }
+  echo_->push_back(fmt::format("{} = [{}]{}", key_path(key), shown, unit && *unit ? std::string(" ") + unit : ""));
+  return out;
+}
+
+TableReader TableReader::table(const std::string& key, bool required) {
+  const toml::node* n = find(key);
+  if (!n) {
+    if (required) missing(key, "a table");
+    return TableReader(empty_, key_path(key), *echo_);
+  }
+  if (!n->is_table()) throw InputError(fmt::format("{} must be a table, got {}", key_path(key), type_name(*n)));
+  return TableReader(*n->as_table(), key_path(key), *echo_);
+}
+
+std::vector<TableReader> TableReader::table_array(const std::string& key) {
+  const toml::node* n = find(key);
+  std::vector<TableReader> out;
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables())
+    throw InputError(fmt::format("{} must be an array of tables ([[{}]] entries)", key_path(key), key_path(key)));
+  for (size_t k = 0; k < a->size(); ++k)
+    out.emplace_back(*(*a)[k].as_table(), fmt::format("{}.{}", key_path(key), k), *echo_);
+  return out;
+}
+
+void TableReader::finish() const {
+  for (auto&& [k, v] : *table_) {
+    const std::string key(k.str());
+    if (std::find(known_.begin(), known_.end(), key) == known_.end()) {
+      std::string list;
+      for (const std::string& a : known_) list += (list.empty() ? "" : ", ") + a;
+      throw InputError(fmt::format("unknown key '{}' (allowed here: {})", key_path(key), list));
+    }
+  }
+}
+
+void apply_override(toml::table& root, const std::string& assignment) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(fmt::format("override '{}' must have the form section.key=value", assignment));
+  const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  // The value in TOML syntax; a bare word that is not valid TOML is taken as a string.
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + text);
+  } catch (const toml::parse_error&) {
+    parsed = toml::table{{"v", text}};
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string p; std::getline(ss, p, '.');) {
+    if (p.empty()) throw InputError(fmt::format("override '{}': empty key in the path", assignment));
+    parts.push_back(p);
+  }
+  toml::table* t = &root;
+  for (size_t k = 0; k + 1 < parts.size(); ++k) {
+    toml::node* n = t->get(parts[k]);
+    if (!n) {
+      t->insert(parts[k], toml::table{});
+      n = t->get(parts[k]);
+    }
+    if (toml::array* a = n->as_array()) {
+      if (k + 2 >= parts.size() || parts[k + 1].find_first_not_of("0123456789") != std::string::npos)
+        throw InputError(fmt::format("override '{}': {} is an array; give an index ({}.0.key=value)", assignment,
+                                     parts[k], parts[k]));
+      const size_t index = std::stoul(parts[k + 1]);
+      if (index >= a->size() || !(*a)[index].is_table())
+        throw InputError(fmt::format("override '{}': {} has {} entries", assignment, parts[k], a->size()));
+      t = (*a)[index].as_table();
+      ++k;
+      continue;
+    }
+    if (!n->is_table()) throw InputError(fmt::format("override '{}': {} is not a table", assignment, parts[k]));
+    t = n->as_table();
+  }
+  t->insert_or_assign(parts.back(), *parsed.get("v"));
+}
+
+toml::table parse_input_file(const std::string& path) {
+  try {
+    return toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    const auto& src = e.source();
+    if (!src.begin) throw InputError(fmt::format("cannot read input file '{}': {}", path, e.description()));
+    throw InputError(fmt::format("{}:{}:{}: {}", path, src.begin.line, src.begin.column, e.description()));
+  }
+}
+
+}  // namespace blastsim::app

@@ -1,0 +1,71 @@
+//! \file input_reader.hpp
+//! \brief Strict reading of TOML input: typed keys with units and ranges, unknown-key detection, overrides, echo.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#define TOML_HEADER_ONLY 1
+#include <toml++/toml.h>
+
+namespace blastsim::app {
+
+//! Allowed interval of a number; the text is used in error messages ("> 1", "in (0, 1]").
+struct Range {
+  double lo = -1e308, hi = 1e308;
+  bool lo_open = false, hi_open = false;
+  static Range any() { return {}; }
+  static Range positive() { return {0.0, 1e308, true, false}; }
+  static Range non_negative() { return {0.0, 1e308, false, false}; }
+  static Range above(double v) { return {v, 1e308, true, false}; }
+  static Range at_least(double v) { return {v, 1e308, false, false}; }
+  static Range half_open(double lo_excl, double hi_incl) { return {lo_excl, hi_incl, true, false}; }
+  bool contains(double v) const;
+  std::string describe() const;
+};
+
+//! Reads one TOML table. Every getter records the key as known; finish() rejects the keys nobody asked
+//! for. Errors are InputError with the full key path, the value and what is allowed. Every value read is
+//! added to the shared echo list with its unit.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, std::vector<std::string>& echo);
+
+  double number(const std::string& key, const char* unit, Range range, std::optional<double> fallback = {});
+  std::optional<double> optional_number(const std::string& key, const char* unit, Range range);
+  long long integer(const std::string& key, const char* unit, long long min_value,
+                    std::optional<long long> fallback = {});
+  bool boolean(const std::string& key, std::optional<bool> fallback = {});
+  std::string text(const std::string& key, const std::vector<std::string>& allowed, std::optional<std::string> fallback = {});
+  std::array<double, 2> pair(const std::string& key, const char* unit, std::optional<std::array<double, 2>> fallback = {});
+  std::vector<double> number_list(const std::string& key, const char* unit, Range range);
+  bool has(const std::string& key) const;
+  //! Sub-table (empty when absent and not required).
+  TableReader table(const std::string& key, bool required = false);
+  //! Array of tables (zero or more entries).
+  std::vector<TableReader> table_array(const std::string& key);
+  const std::string& path() const { return path_; }
+  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  //! Throws InputError naming the first key of this table that no getter asked for.
+  void finish() const;
+
+ private:
+  const toml::node* find(const std::string& key);
+  [[noreturn]] void missing(const std::string& key, const std::string& what) const;
+  const toml::table* table_;
+  toml::table empty_;
+  std::string path_;
+  std::vector<std::string>* echo_;
+  std::vector<std::string> known_;
+};
+
+//! Applies "section.key=value" overrides to a parsed input (value in TOML syntax; bare words are strings).
+//! A numeric path element indexes an array of tables (gas.region.0.radius=0.1).
+void apply_override(toml::table& root, const std::string& assignment);
+
+//! Parses a file; syntax errors become InputError with file, line and column.
+toml::table parse_input_file(const std::string& path);
+
+}  // namespace blastsim::app
