@@ -230,7 +230,9 @@ void apply_override(toml::table& root, const std::string& assignment) {
     parts.push_back(p);
   }
   toml::table* t = &root;
+  std::string prefix;  // path walked so far, for messages
   for (size_t k = 0; k + 1 < parts.size(); ++k) {
+    prefix += (prefix.empty() ? "" : ".") + parts[k];
     toml::node* n = t->get(parts[k]);
     if (!n) {
       t->insert(parts[k], toml::table{});
@@ -239,15 +241,15 @@ void apply_override(toml::table& root, const std::string& assignment) {
     if (toml::array* a = n->as_array()) {
       if (k + 2 >= parts.size() || parts[k + 1].find_first_not_of("0123456789") != std::string::npos)
         throw InputError(fmt::format("override '{}': {} is an array; give an index ({}.0.key=value)", assignment,
-                                     parts[k], parts[k]));
+                                     prefix, prefix));
       const size_t index = std::stoul(parts[k + 1]);
       if (index >= a->size() || !(*a)[index].is_table())
-        throw InputError(fmt::format("override '{}': {} has {} entries", assignment, parts[k], a->size()));
+        throw InputError(fmt::format("override '{}': {} has {} entries", assignment, prefix, a->size()));
       t = (*a)[index].as_table();
-      ++k;
+      prefix += "." + parts[++k];
       continue;
     }
-    if (!n->is_table()) throw InputError(fmt::format("override '{}': {} is not a table", assignment, parts[k]));
+    if (!n->is_table()) throw InputError(fmt::format("override '{}': {} is not a table", assignment, prefix));
     t = n->as_table();
   }
   t->insert_or_assign(parts.back(), *parsed.get("v"));

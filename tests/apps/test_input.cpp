@@ -1,0 +1,133 @@
+//! \file test_input.cpp
+//! \brief Driver input: every kind of bad input gives one InputError naming the key, value and allowed range.
+#include "blastsim/core/error.hpp"
+#include "case_config.hpp"
+#include "catch.hpp"
+
+#include <string>
+
+using namespace blastsim;
+
+namespace {
+
+// A valid minimal gas case; each test breaks one thing.
+const char* kValid = R"(
+[domain]
+nx = 20
+ny = 10
+x_min = 0.0
+x_max = 1.0
+y_min = 0.0
+y_max = 0.5
+[gas]
+gamma = 1.4
+[gas.ambient]
+density = 1.2
+pressure = 1.0e5
+[[gas.region]]
+shape = "circle"
+center = [0.5, 0.25]
+radius = 0.1
+density = 163.0
+internal_energy = 4.29e5
+[time]
+end = 1.0e-4
+)";
+
+app::CaseConfig read(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  toml::table t = toml::parse(text);
+  for (const std::string& o : overrides) app::apply_override(t, o);
+  return app::read_case(t);
+}
+
+//! The InputError message of reading kValid with `overrides`, or "" when it is accepted.
+std::string error_of(const std::vector<std::string>& overrides, const std::string& text = kValid) {
+  try {
+    read(text, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("A valid case is read with its defaults and echoed with units", "[app][input]") {
+  const app::CaseConfig c = read(kValid);
+  CHECK(c.grid.nx == 20);
+  CHECK_THAT(c.grid.dx, WithinRel(0.05, 1e-14));
+  CHECK(c.courant == 0.1);
+  CHECK_THAT(c.ambient.internal_energy, WithinRel(1.0e5 / (0.4 * 1.2), 1e-14));  // from the pressure
+  CHECK(c.regions.size() == 1);
+  CHECK(c.initial_state(0.5, 0.25).density == 163.0);
+  CHECK(c.initial_state(0.9, 0.25).density == 1.2);
+  bool echoed_units = false, echoed_default = false;
+  for (const std::string& l : c.echo) {
+    echoed_units |= l == "domain.x_max = 1 m";
+    echoed_default |= contains(l, "gas.courant = 0.1") && contains(l, "(default)");
+  }
+  CHECK(echoed_units);
+  CHECK(echoed_default);
+}
+
+TEST_CASE("Command-line overrides replace values, reach array entries and create keys", "[app][input]") {
+  const app::CaseConfig c =
+      read(kValid, {"domain.nx=40", "gas.region.0.radius=0.2", "gas.boundary.left=wall", "time.dt=1e-7"});
+  CHECK(c.grid.nx == 40);
+  CHECK(c.regions[0].radius == 0.2);
+  CHECK(c.solver.boundaries.side[cip::left] == cip::BoundaryKind::wall);
+  REQUIRE(c.fixed_dt);
+  CHECK(*c.fixed_dt == 1e-7);
+  CHECK(contains(error_of({"gas.region.3.radius=1"}), "gas.region has 1 entries"));
+  CHECK(contains(error_of({"novalue"}), "section.key=value"));
+}
+
+TEST_CASE("Bad input: unknown keys", "[app][input][bad]") {
+  CHECK(contains(error_of({"gas.gama=1.4"}), "unknown key 'gas.gama'"));
+  CHECK(contains(error_of({"gas.gama=1.4"}), "allowed here: gamma"));
+  CHECK(contains(error_of({"extra.key=1"}), "unknown key 'extra'"));
+  CHECK(contains(error_of({"gas.region.0.colour=1"}), "unknown key 'gas.region.0.colour'"));
+}
+
+TEST_CASE("Bad input: missing required keys", "[app][input][bad]") {
+  const std::string no_nx = std::string(kValid).replace(std::string(kValid).find("nx = 20"), 7, "");
+  CHECK(contains(error_of({}, no_nx), "missing required key 'domain.nx'"));
+  const std::string no_end = std::string(kValid).replace(std::string(kValid).find("end = 1.0e-4"), 12, "");
+  CHECK(contains(error_of({}, no_end), "missing required key 'time.end'"));
+  const std::string no_rho = std::string(kValid).replace(std::string(kValid).find("density = 1.2"), 13, "");
+  CHECK(contains(error_of({}, no_rho), "missing required key 'gas.ambient.density'"));
+}
+
+TEST_CASE("Bad input: wrong types", "[app][input][bad]") {
+  CHECK(contains(error_of({"domain.nx=20.5"}), "domain.nx must be an integer, got a number"));
+  CHECK(contains(error_of({"gas.gamma=\"air\""}), "gas.gamma must be a number, got a string"));
+  CHECK(contains(error_of({"gas.region.0.center=1.0"}), "gas.region.0.center must be an array of two numbers"));
+  CHECK(contains(error_of({"output.vtk=1"}), "output.vtk must be true or false"));
+  CHECK(contains(error_of({"gas.boundary.left=sticky"}), "gas.boundary.left = \"sticky\": must be one of"));
+}
+
+TEST_CASE("Bad input: non-physical values name the key, the value and the allowed range", "[app][input][bad]") {
+  CHECK(error_of({"gas.ambient.density=-1.2"}) == "gas.ambient.density = -1.2 kg/m3: must be > 0");
+  CHECK(error_of({"gas.gamma=1.0"}) == "gas.gamma = 1: must be > 1");
+  CHECK(error_of({"gas.gamma=0.9"}) == "gas.gamma = 0.9: must be > 1");
+  CHECK(error_of({"domain.nx=2"}) == "domain.nx = 2: must be an integer >= 3");
+  CHECK(error_of({"domain.ny=0"}) == "domain.ny = 0: must be an integer >= 3");
+  CHECK(error_of({"gas.courant=0"}) == "gas.courant = 0: must be in (0, 1]");
+  CHECK(error_of({"gas.courant=1.5"}) == "gas.courant = 1.5: must be in (0, 1]");
+  CHECK(error_of({"gas.region.0.internal_energy=-5"}) == "gas.region.0.internal_energy = -5 J/kg: must be > 0");
+  CHECK(error_of({"time.end=-1"}) == "time.end = -1 s: must be > 0");
+  CHECK(error_of({"domain.x_max=-1"}) == "domain.x_max = -1 m: must be > 0");
+  CHECK(contains(error_of({"gas.region.0.pressure=1e7"}), "exactly one of 'internal_energy'"));
+  CHECK(contains(error_of({"gas.boundary.left=periodic"}), "must both be \"periodic\""));
+}
+
+TEST_CASE("Bad input file: syntax errors carry file, line and column; a missing file is named", "[app][input][bad]") {
+  try {
+    app::load_case("/nonexistent/case.toml", {});
+    FAIL("no error for a missing file");
+  } catch (const InputError& e) {
+    CHECK(contains(e.what(), "/nonexistent/case.toml"));
+  }
+}
