@@ -1,9 +1,8 @@
 //! \file case_config.cpp
 //! \brief Reads the driver's TOML input into a CaseConfig; docs/input.md documents every key read here.
-#include "case_config.hpp"
+#include "case_input.hpp"
 
 #include "blastsim/core/error.hpp"
-#include "input_reader.hpp"
 
 #include <fmt/format.h>
 

@@ -1,9 +1,11 @@
 //! \file case_config.hpp
-//! \brief The driver's case description (domain, gas states, time, output, probes) read from a TOML input.
+//! \brief The driver's case description (domain, gas states, time, output, probes); plain data, no backend
+//! or TOML headers (case_input.hpp reads it from a file).
 #pragma once
 
-#include "blastsim/cip/gas_solver.hpp"
-#include "input_reader.hpp"
+#include "blastsim/cip/eos.hpp"
+#include "blastsim/cip/gas_types.hpp"
+#include "blastsim/cip/grid.hpp"
 
 #include <array>
 #include <optional>
@@ -63,12 +65,5 @@ struct CaseConfig {
   //! Initial state at a point: the last region containing it, else the ambient state.
   cip::GasPoint initial_state(double x, double y) const;
 };
-
-//! Reads and validates a case; `overrides` are "section.key=value" strings applied first. Throws
-//! InputError (one line naming the key, the value and what is allowed) on any bad input.
-CaseConfig load_case(const std::string& input_path, const std::vector<std::string>& overrides);
-
-//! Same from an already parsed table (tests).
-CaseConfig read_case(const toml::table& input);
 
 }  // namespace blastsim::app

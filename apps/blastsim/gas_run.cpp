@@ -2,6 +2,7 @@
 //! \brief The gas-only time loop of the driver and its outputs (VTK series, CSV probes, totals).
 #include "gas_run.hpp"
 
+#include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/core/error.hpp"
 #include "output_files.hpp"
 #include "vtk_gas_writer.hpp"

@@ -1,8 +1,8 @@
 //! \file main.cpp
 //! \brief The blastsim driver: reads one TOML case (plus key=value overrides), echoes it, runs it.
-#include "blastsim/core/backend.hpp"
 #include "blastsim/core/error.hpp"
-#include "case_config.hpp"
+#include "blastsim/core/macros.hpp"
+#include "case_input.hpp"
 #include "gas_run.hpp"
 
 #include <CLI/CLI.hpp>

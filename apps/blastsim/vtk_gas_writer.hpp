@@ -2,7 +2,8 @@
 //! \brief Gas fields as VTK image data (.vti, binary), one file per snapshot; needs the VTK library.
 #pragma once
 
-#include "blastsim/cip/gas_solver.hpp"
+#include "blastsim/cip/gas_types.hpp"
+#include "blastsim/cip/grid.hpp"
 
 #include <string>
 

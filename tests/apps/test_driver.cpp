@@ -2,7 +2,7 @@
 //! \brief The driver end to end: a gas case writes VTK image data that VTK reads back, probe CSVs with the
 //! documented columns, and a clear non-zero exit with no output for bad input.
 #include "blastsim/core/error.hpp"
-#include "case_config.hpp"
+#include "case_input.hpp"
 #include "catch.hpp"
 #include "gas_run.hpp"
 

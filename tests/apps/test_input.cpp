@@ -1,7 +1,7 @@
 //! \file test_input.cpp
 //! \brief Driver input: every kind of bad input gives one InputError naming the key, value and allowed range.
 #include "blastsim/core/error.hpp"
-#include "case_config.hpp"
+#include "case_input.hpp"
 #include "catch.hpp"
 
 #include <string>

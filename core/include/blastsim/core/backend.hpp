@@ -5,7 +5,10 @@
 //! same source compiles with g++ (THRUST_DEVICE_SYSTEM_OMP) and with nvcc (THRUST_DEVICE_SYSTEM_CUDA).
 #pragma once
 
-#include <cstdint>
+#include "blastsim/core/field2d.hpp"
+#include "blastsim/core/macros.hpp"
+
+#include <cassert>
 #include <vector>
 
 #include <thrust/device_vector.h>
@@ -16,24 +19,7 @@
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/transform_reduce.h>
 
-#if defined(__CUDACC__)
-#define BLAST_HD __host__ __device__
-#else
-#define BLAST_HD
-#endif
-
 namespace blastsim {
-
-using index_t = std::int64_t;
-
-//! Name of the compiled backend, for logs and benchmark reports.
-inline const char* backend_name() {
-#if defined(__CUDACC__)
-  return "cuda";
-#else
-  return "cpu-openmp";
-#endif
-}
 
 //! Runs f(i) for i in [0, n). `label` names the kernel for profilers and error messages.
 template <class F>
@@ -100,6 +86,18 @@ T* device_ptr(DeviceVector<T>& v) {
 template <class T>
 const T* device_ptr(const DeviceVector<T>& v) {
   return thrust::raw_pointer_cast(v.data());
+}
+
+//! Non-owning view of a device vector holding a padded 2-D array.
+template <class T>
+Field2D<T> make_field_view(DeviceVector<T>& v, PaddedShape s) {
+  assert(static_cast<index_t>(v.size()) == s.size());
+  return Field2D<T>{device_ptr(v), s};
+}
+template <class T>
+Field2D<const T> make_field_view(const DeviceVector<T>& v, PaddedShape s) {
+  assert(static_cast<index_t>(v.size()) == s.size());
+  return Field2D<const T>{device_ptr(v), s};
 }
 
 //! Explicit copy to host memory (the only way host code reads device data).

@@ -1,8 +1,9 @@
 //! \file field2d.hpp
 //! \brief Non-owning 2-D view of a padded, row-major array (i fastest) with ghost layers: the type kernels take.
+//! Plain data with no backend dependency; make_field_view() in backend.hpp builds one over a device vector.
 #pragma once
 
-#include "blastsim/core/backend.hpp"
+#include "blastsim/core/macros.hpp"
 
 #include <cassert>
 
@@ -36,15 +37,5 @@ struct Field2D {
   }
 };
 
-template <class T>
-Field2D<T> make_field_view(DeviceVector<T>& v, PaddedShape s) {
-  assert(static_cast<index_t>(v.size()) == s.size());
-  return Field2D<T>{device_ptr(v), s};
-}
-template <class T>
-Field2D<const T> make_field_view(const DeviceVector<T>& v, PaddedShape s) {
-  assert(static_cast<index_t>(v.size()) == s.size());
-  return Field2D<const T>{device_ptr(v), s};
-}
 
 }  // namespace blastsim

@@ -2,7 +2,7 @@
 //! \brief Outer boundaries of the gas grid: non-reflecting outflow (the paper's), reflective wall, periodic.
 #pragma once
 
-#include "blastsim/core/backend.hpp"
+#include "blastsim/core/macros.hpp"
 
 #include <array>
 #include <string>

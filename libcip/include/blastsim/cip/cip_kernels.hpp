@@ -2,7 +2,7 @@
 //! \brief Point formulas of the CIP gas solver (interpolation, artificial viscosity), callable from kernels and tests.
 #pragma once
 
-#include "blastsim/core/backend.hpp"
+#include "blastsim/core/macros.hpp"
 
 #include <cmath>
 

@@ -2,7 +2,7 @@
 //! \brief Equation of state of the gas behind one interface (ideal gas now; JWL joins as another kind).
 #pragma once
 
-#include "blastsim/core/backend.hpp"
+#include "blastsim/core/macros.hpp"
 
 #include <cmath>
 

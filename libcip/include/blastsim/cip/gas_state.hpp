@@ -3,6 +3,7 @@
 #pragma once
 
 #include "blastsim/cip/grid.hpp"
+#include "blastsim/core/backend.hpp"
 
 #include <cstdint>
 

@@ -1,0 +1,27 @@
+//! \file macros.hpp
+//! \brief Portability macros with no dependency (BLAST_HD), so plain host code can use the libraries' types.
+#pragma once
+
+#include <cstdint>
+
+#if defined(__CUDACC__)
+#define BLAST_HD __host__ __device__
+#else
+#define BLAST_HD
+#endif
+
+namespace blastsim {
+
+using index_t = std::int64_t;
+
+//! Name of the backend this build's kernels run on, for logs and benchmark reports. Correct in host-only
+//! translation units too (the build defines BLASTSIM_BACKEND_CUDA for a CUDA build).
+inline const char* backend_name() {
+#if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
+  return "cuda";
+#else
+  return "cpu-openmp";
+#endif
+}
+
+}  // namespace blastsim
