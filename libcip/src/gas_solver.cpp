@@ -25,8 +25,8 @@ EquationOfState EquationOfState::ideal(double gamma) {
 namespace detail {
 
 BLAST_HD inline CipPoint load(const CipFieldView& F, int i, int j) { return {F.f(i, j), F.gx(i, j), F.gy(i, j)}; }
-BLAST_HD inline void store(const CipFieldView& F, int i, int j, const CipPoint& p) {
-  F.f(i, j) = p.f;
+BLAST_HD inline void store(const CipFieldView& F, int i, int j, const CipPoint& p, bool derivatives_only = false) {
+  if (!derivatives_only) F.f(i, j) = p.f;
   F.gx(i, j) = p.gx;
   F.gy(i, j) = p.gy;
 }
@@ -99,6 +99,7 @@ struct FaceVelocityKernel {
 //! Non-advection phase for cell quantities (paper eqs. 1 and 3 without advection):
 //! rho* = rho - dt rho div(u^n);  e* = e - dt (P / rho) [div(u^n) + div(u*)] / 2.
 struct CellNonAdvectionKernel {
+  bool conservative;  // density changes only through the fluxes of the transport phase
   GasStateView s;
   Field2D<double> rho_out, e_out;
   Field2D<const double> us, vs, P;
@@ -113,7 +114,7 @@ struct CellNonAdvectionKernel {
     }
     const double div_n = (s.u.f(i + 1, j) - s.u.f(i, j)) / dx + (s.v.f(i, j + 1) - s.v.f(i, j)) / dy;
     const double div_s = (us(i + 1, j) - us(i, j)) / dx + (vs(i, j + 1) - vs(i, j)) / dy;
-    rho_out(i, j) = rho - dt * rho * div_n;
+    rho_out(i, j) = conservative ? rho : rho - dt * rho * div_n;
     e_out(i, j) = e - dt * (P(i, j) / rho) * 0.5 * (div_n + div_s);
   }
 };
@@ -212,22 +213,25 @@ BLAST_HD inline CipPoint advect_masked(const CipFieldView& F, int i, int j, cons
 }
 
 //! CIP advection of rho and e with the cell-centre velocity (average of the face velocities).
+//! With derivatives_only (conservative transport) the values come from the flux form and only the
+//! derivatives are advected here.
 struct CellAdvectionKernel {
   GasStateView from, to;
   Field2D<const std::uint8_t> active;
   double dt, dx, dy;
   Limiter limiter;
+  bool derivatives_only;
   BLAST_HD void operator()(int i, int j) const {
     if (!active(i, j)) {
-      store(to.rho, i, j, load(from.rho, i, j));
-      store(to.e, i, j, load(from.e, i, j));
+      store(to.rho, i, j, load(from.rho, i, j), derivatives_only);
+      store(to.e, i, j, load(from.e, i, j), derivatives_only);
       return;
     }
     const double uc = 0.5 * (from.u.f(i, j) + from.u.f(i + 1, j));
     const double vc = 0.5 * (from.v.f(i, j) + from.v.f(i, j + 1));
     const Upwind w = upwind(i, j, uc, vc, dt, dx, dy);
-    store(to.rho, i, j, advect_masked(from.rho, i, j, w, active, limiter));
-    store(to.e, i, j, advect_masked(from.e, i, j, w, active, limiter));
+    store(to.rho, i, j, advect_masked(from.rho, i, j, w, active, limiter), derivatives_only);
+    store(to.e, i, j, advect_masked(from.e, i, j, w, active, limiter), derivatives_only);
   }
 };
 
@@ -240,11 +244,12 @@ struct FaceAdvectionKernel {
   Field2D<const double> imposed;
   double dt, dx, dy;
   Limiter limiter;
+  bool derivatives_only;
   BLAST_HD void operator()(int i, int j) const {
     const CipFieldView& F = axis == 0 ? from.u : from.v;
     const CipFieldView& T = axis == 0 ? to.u : to.v;
     if (prescribed(i, j)) {
-      store(T, i, j, CipPoint{imposed(i, j), 0.0, 0.0});
+      store(T, i, j, CipPoint{imposed(i, j), 0.0, 0.0}, derivatives_only);
       return;
     }
     double uu, vv;
@@ -255,7 +260,7 @@ struct FaceAdvectionKernel {
       vv = from.v.f(i, j);
       uu = 0.25 * (from.u.f(i, j - 1) + from.u.f(i + 1, j - 1) + from.u.f(i, j) + from.u.f(i + 1, j));
     }
-    store(T, i, j, advect(F, i, j, upwind(i, j, uu, vv, dt, dx, dy), limiter));
+    store(T, i, j, advect(F, i, j, upwind(i, j, uu, vv, dt, dx, dy), limiter), derivatives_only);
   }
 };
 
@@ -319,9 +324,15 @@ struct TotalsOfCell {
     const int j = static_cast<int>(k / nx), i = static_cast<int>(k - static_cast<index_t>(j) * nx);
     if (!active(i, j)) return {0, 0, 0, 0, 0};
     const double m = s.rho.f(i, j) * area;
-    const double uc = 0.5 * (s.u.f(i, j) + s.u.f(i + 1, j));
-    const double vc = 0.5 * (s.v.f(i, j) + s.v.f(i, j + 1));
-    return {m, m * uc, m * vc, m * s.e.f(i, j), 0.5 * m * (uc * uc + vc * vc)};
+    // Momentum and kinetic energy live on the faces: each face carries the mass of its dual cell,
+    // (rho_left + rho_right)/2 x area, and gives half of its share to each of its two cells.
+    const Field2D<double>& rho = s.rho.f;
+    const double ul = s.u.f(i, j), ur = s.u.f(i + 1, j), vb = s.v.f(i, j), vt = s.v.f(i, j + 1);
+    const double ml = 0.5 * (rho(i - 1, j) + rho(i, j)) * area, mr = 0.5 * (rho(i, j) + rho(i + 1, j)) * area;
+    const double mb = 0.5 * (rho(i, j - 1) + rho(i, j)) * area, mt = 0.5 * (rho(i, j) + rho(i, j + 1)) * area;
+    const double px = 0.5 * (ml * ul + mr * ur), py = 0.5 * (mb * vb + mt * vt);
+    const double ke = 0.25 * (ml * ul * ul + mr * ur * ur + mb * vb * vb + mt * vt * vt);
+    return {m, px, py, m * s.e.f(i, j), ke};
   }
 };
 
@@ -377,6 +388,9 @@ GasSolver::GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasS
   starred_.resize(n);
   immersed_.resize(n);
   pressure_.assign(n, 0.0);
+  for (DeviceVector<double>* w : {&mass_flux_x_, &mass_flux_y_, &energy_flux_x_, &energy_flux_y_,
+                                 &internal_energy_density_, &dissipation_u_, &dissipation_v_})
+    w->assign(n, 0.0);
   outflow_pressure_.assign(2 * static_cast<size_t>(grid.nx + grid.ny), 0.0);
   outflow_velocity_.assign(2 * static_cast<size_t>(grid.nx + grid.ny), 0.0);
 }
@@ -467,7 +481,7 @@ void GasSolver::step(double dt) {
   for_each_cell("cip.face_velocity.v", 0, g.nx, 0, g.ny + 1,
                 detail::FaceVelocityKernel{1, n, s.v.f, rho_n, Pc, active, v_pres, v_imp, g, ctx, dt});
   for_each_cell("cip.cell_nonadvection", 0, g.nx, 0, g.ny,
-                detail::CellNonAdvectionKernel{n, s.rho.f, s.e.f, us, vs, Pc, active, dt, g.dx, g.dy});
+                detail::CellNonAdvectionKernel{options_.transport == Transport::conservative, n, s.rho.f, s.e.f, us, vs, Pc, active, dt, g.dx, g.dy});
   fill_ghosts(s, g, ctx);
   // 3. Derivative update (Yabe, Xiao & Utsumi 2001).
   for_each_cell("cip.derivatives.cell", 0, g.nx, 0, g.ny, detail::CellDerivativeKernel{n, s, active, dt, g.dx, g.dy});
@@ -476,13 +490,16 @@ void GasSolver::step(double dt) {
   for_each_cell("cip.derivatives.v", 0, g.nx, 0, g.ny + 1,
                 detail::FaceDerivativeKernel{1, n, s, v_pres, dt, g.dx, g.dy});
   fill_ghosts(s, g, ctx);
-  // 4. CIP advection of values and derivatives with the updated velocity, back into the current state.
+  // 4. Transport. Conservative: values in flux form (conservative_transport.cpp); the paper's: values by
+  // CIP. Either way the derivatives are advected by CIP with the updated velocity.
+  const bool conservative = options_.transport == Transport::conservative;
+  if (conservative) transport_conservatively(dt);
   for_each_cell("cip.advection.cell", 0, g.nx, 0, g.ny,
-                detail::CellAdvectionKernel{s, n, active, dt, g.dx, g.dy, options_.limiter});
+                detail::CellAdvectionKernel{s, n, active, dt, g.dx, g.dy, options_.limiter, conservative});
   for_each_cell("cip.advection.u", 0, g.nx + 1, 0, g.ny,
-                detail::FaceAdvectionKernel{0, s, n, u_pres, u_imp, dt, g.dx, g.dy, options_.limiter});
+                detail::FaceAdvectionKernel{0, s, n, u_pres, u_imp, dt, g.dx, g.dy, options_.limiter, conservative});
   for_each_cell("cip.advection.v", 0, g.nx, 0, g.ny + 1,
-                detail::FaceAdvectionKernel{1, s, n, v_pres, v_imp, dt, g.dx, g.dy, options_.limiter});
+                detail::FaceAdvectionKernel{1, s, n, v_pres, v_imp, dt, g.dx, g.dy, options_.limiter, conservative});
   fill_ghosts(n, g, ctx);
   time_ += dt;
   ++steps_;

@@ -6,6 +6,7 @@
 #include "blastsim/core/macros.hpp"
 
 #include <cassert>
+#include <type_traits>
 
 namespace blastsim {
 
@@ -34,6 +35,11 @@ struct Field2D {
     assert(shape.contains(i, j));
 #endif
     return data[shape.offset(i, j)];
+  }
+  //! A view of T converts to a read-only view of the same array.
+  template <class U = T, class = std::enable_if_t<!std::is_const_v<U>>>
+  BLAST_HD operator Field2D<const U>() const {
+    return Field2D<const U>{data, shape};
   }
 };
 

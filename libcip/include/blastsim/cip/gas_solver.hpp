@@ -59,6 +59,7 @@ class GasSolver {
 
  private:
   BoundaryContext boundary_context() const;
+  void transport_conservatively(double dt);
   GasGrid grid_;
   EquationOfState eos_;
   GasSolverOptions options_;
@@ -67,6 +68,10 @@ class GasSolver {
   ImmersedBoundaryArrays immersed_;
   DeviceVector<double> pressure_;  // P = p + q
   DeviceVector<double> outflow_pressure_, outflow_velocity_;  // OutflowReference, set by initialise()
+  // Conservative transport work arrays (padded shape): mass and internal-energy fluxes through x- and
+  // y-faces, cell internal energy per volume, kinetic energy dissipated per face.
+  DeviceVector<double> mass_flux_x_, mass_flux_y_, energy_flux_x_, energy_flux_y_, internal_energy_density_;
+  DeviceVector<double> dissipation_u_, dissipation_v_;
   double time_ = 0.0;
   long long steps_ = 0;
 };

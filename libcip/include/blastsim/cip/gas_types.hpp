@@ -11,17 +11,31 @@
 namespace blastsim::cip {
 
 //! Coefficients of the artificial viscosity, paper eq. (4). The paper does not give them. The defaults
-//! c1 = 1, c2 = 2 were chosen by measurement (docs/gas-solver.md): with the common c1 = 0.5, c2 = 1 the
-//! non-conservative form runs the shock of the paper's 277:1 jump 2.6 % slow; with 1 and 2 it is 0.8 %.
+//! c1 = 0.25, c2 = 0.5 suit the (default) conservative transport, which puts shocks in the right place
+//! whatever the coefficients: less viscosity smears less (Sod's L1). The paper's non-conservative
+//! transport needs c1 = 1, c2 = 2: with the common 0.5 and 1 it runs the shock of the 277:1 jump 2.6 %
+//! slow, with 1 and 2 0.75 % (recommended_viscosity(); docs/gas-solver.md).
 struct ArtificialViscosity {
-  double linear = 1.0;     //!< c1 [-]
-  double quadratic = 2.0;  //!< c2 [-]
+  double linear = 0.25;    //!< c1 [-]
+  double quadratic = 0.5;  //!< c2 [-]
 };
+
+//! How values are carried by the flow (the advection phase).
+enum class Transport {
+  conservative,  //!< flux form: mass, momentum and total energy conserved (conservative_transport.cpp); default
+  paper,         //!< the paper's non-conservative CIP advection of rho, e, u, v (eqs. 1-3)
+};
+
+//! The viscosity coefficients measured to suit each transport (docs/gas-solver.md).
+inline ArtificialViscosity recommended_viscosity(Transport t) {
+  return t == Transport::paper ? ArtificialViscosity{1.0, 2.0} : ArtificialViscosity{0.25, 0.5};
+}
 
 struct GasSolverOptions {
   BoundaryConditions boundaries;
   ArtificialViscosity viscosity;
   Limiter limiter = Limiter::minmax;
+  Transport transport = Transport::conservative;
 };
 
 //! Primitive state at a point, used to initialise the grid.
@@ -41,13 +55,15 @@ struct GasSample {
   double e;     //!< [J/kg]
 };
 
-//! Integrals over the active cells (per unit depth of the 2-D domain).
+//! Integrals over the active cells (per unit depth of the 2-D domain). Momentum and kinetic energy are
+//! those of the staggered face velocities with the masses of their dual cells (half of each face's share
+//! to each of its two cells), the quantities the conservative transport conserves.
 struct GasTotals {
   double mass = 0;             //!< [kg/m]
   double momentum_x = 0;       //!< [kg/s]
   double momentum_y = 0;       //!< [kg/s]
   double internal_energy = 0;  //!< [J/m]
-  double kinetic_energy = 0;   //!< [J/m], from cell-centred (face-averaged) velocities
+  double kinetic_energy = 0;   //!< [J/m], of the face velocities with their dual-cell masses
   double total_energy() const { return internal_energy + kinetic_energy; }
 };
 
