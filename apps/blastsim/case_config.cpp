@@ -66,8 +66,12 @@ CaseConfig read_case(const toml::table& input) {
   TableReader gas = root.table("gas", true);
   c.eos = cip::EquationOfState::ideal(gas.number("gamma", "", Range::above(1.0), 1.4));
   c.courant = gas.number("courant", "", Range::half_open(0.0, 1.0), 0.1);
-  c.solver.viscosity.linear = gas.number("viscosity_linear", "", Range::non_negative(), 1.0);
-  c.solver.viscosity.quadratic = gas.number("viscosity_quadratic", "", Range::non_negative(), 2.0);
+  c.solver.transport = gas.text("transport", {"conservative", "paper"}, std::string("conservative")) == "paper"
+                           ? cip::Transport::paper
+                           : cip::Transport::conservative;
+  const cip::ArtificialViscosity q = cip::recommended_viscosity(c.solver.transport);
+  c.solver.viscosity.linear = gas.number("viscosity_linear", "", Range::non_negative(), q.linear);
+  c.solver.viscosity.quadratic = gas.number("viscosity_quadratic", "", Range::non_negative(), q.quadratic);
   c.solver.limiter =
       gas.text("limiter", {"minmax", "none"}, std::string("minmax")) == "none" ? cip::Limiter::none : cip::Limiter::minmax;
   TableReader bc = gas.table("boundary");

@@ -59,6 +59,12 @@ TEST_CASE("A valid case is read with its defaults and echoed with units", "[app]
   CHECK(c.grid.nx == 20);
   CHECK_THAT(c.grid.dx, WithinRel(0.05, 1e-14));
   CHECK(c.courant == 0.1);
+  CHECK(c.solver.transport == cip::Transport::conservative);
+  CHECK(c.solver.viscosity.linear == 0.25);  // the conservative transport's coefficients
+  const app::CaseConfig paper = read(kValid, {"gas.transport=paper"});
+  CHECK(paper.solver.transport == cip::Transport::paper);
+  CHECK(paper.solver.viscosity.linear == 1.0);  // the paper's transport's coefficients
+  CHECK(paper.solver.viscosity.quadratic == 2.0);
   CHECK_THAT(c.ambient.internal_energy, WithinRel(1.0e5 / (0.4 * 1.2), 1e-14));  // from the pressure
   CHECK(c.regions.size() == 1);
   CHECK(c.initial_state(0.5, 0.25).density == 163.0);
