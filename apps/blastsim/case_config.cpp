@@ -117,6 +117,8 @@ CaseConfig read_case(const toml::table& input) {
   c.output_interval = out.number("interval", "s", Range::non_negative(), 0.0);
   c.vtk = out.boolean("vtk", true);
   c.progress_interval = out.number("progress_interval", "s (wall)", Range::non_negative(), 2.0);
+  c.monitor_interval = out.integer("monitor_interval", "steps", 1, 1);
+  c.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
   out.finish();
 
   TableReader probe = root.table("probe");

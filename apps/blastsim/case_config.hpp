@@ -57,6 +57,8 @@ struct CaseConfig {
   double output_interval = 0.0;         //!< [s] between field snapshots; 0: start and end only
   bool vtk = true;
   double progress_interval = 2.0;       //!< [s of wall time] between progress lines
+  long long monitor_interval = 1;       //!< steps between rows of the conservation monitor
+  double drift_warning = 0.01;          //!< relative mass/energy balance drift that triggers a warning
   std::vector<LineProbe> line_probes;
   std::vector<PointProbe> point_probes;
   //! The resolved configuration, one "key = value unit" line per key (defaults marked).

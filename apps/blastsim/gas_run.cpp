@@ -30,12 +30,13 @@ std::string hms(double seconds) {
 //! Output state of one run: files, schedules and open CSV streams.
 class GasOutputs {
  public:
-  GasOutputs(const CaseConfig& c, cip::GasSolver& solver)
-      : c_(c), solver_(solver), dir_(c.output_directory), pvd_((dir_ / "gas.pvd").string()) {
+  GasOutputs(const CaseConfig& c, cip::GasSolver& solver, std::ostream& log)
+      : c_(c), solver_(solver), log_(log), dir_(c.output_directory), pvd_((dir_ / "gas.pvd").string()) {
     std::filesystem::create_directories(dir_);
     totals_.open(dir_ / "gas_totals.csv", std::ios::trunc);
     totals_ << "step,time_s,dt_s,mass_kg_per_m,momentum_x_kg_per_s,momentum_y_kg_per_s,internal_energy_J_per_m,"
-               "kinetic_energy_J_per_m,total_energy_J_per_m\n";
+               "kinetic_energy_J_per_m,total_energy_J_per_m,mass_out_kg_per_m,momentum_x_out_kg_per_s,"
+               "momentum_y_out_kg_per_s,energy_out_J_per_m,mass_balance_drift,energy_balance_drift\n";
     for (const PointProbe& p : c.point_probes) {
       point_files_.emplace_back(dir_ / fmt::format("point_{}.csv", p.name), std::ios::trunc);
       point_files_.back() << "t,x,y,rho,u,v,p,e\n";
@@ -69,7 +70,7 @@ class GasOutputs {
           line_done_[k][m] = true;
         }
     sample_points(t);
-    if (solver_.steps() % 10 == 0 || force_snapshot) write_totals(dt);
+    if (solver_.steps() % c_.monitor_interval == 0 || force_snapshot) monitor(dt);
   }
 
  private:
@@ -110,16 +111,36 @@ class GasOutputs {
                              << std::flush;
     }
   }
-  void write_totals(double dt) {
+  //! The conservation monitor: totals in the domain, what crossed the outer boundary, and the relative
+  //! drift of the balance (in domain + out - initial) / initial; a warning when it exceeds the threshold.
+  void monitor(double dt) {
     const cip::GasTotals s = solver_.totals();
-    totals_ << fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n", solver_.steps(),
-                           solver_.time(), dt, s.mass, s.momentum_x, s.momentum_y, s.internal_energy, s.kinetic_energy,
-                           s.total_energy())
+    const cip::BoundaryOutflow& o = solver_.boundary_outflow();
+    if (solver_.steps() == 0) initial_ = s;
+    const double mass_drift = (s.mass + o.mass) / initial_.mass - 1;
+    const double energy_drift = (s.total_energy() + o.energy) / initial_.total_energy() - 1;
+    totals_ << fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
+                           "{:.12e},{:.6e},{:.6e}\n",
+                           solver_.steps(), solver_.time(), dt, s.mass, s.momentum_x, s.momentum_y, s.internal_energy,
+                           s.kinetic_energy, s.total_energy(), o.mass, o.momentum_x, o.momentum_y, o.energy,
+                           mass_drift, energy_drift)
             << std::flush;
+    warn_once(mass_warned_, "mass", mass_drift);
+    warn_once(energy_warned_, "energy", energy_drift);
+  }
+  void warn_once(bool& warned, const char* what, double drift) {
+    if (warned || !(std::fabs(drift) > c_.drift_warning)) return;
+    warned = true;
+    log_ << fmt::format("warning: {} balance drifted by {:+.3e} (> output.drift_warning = {:g}) at step {} "
+                        "(t = {:.6e} s); gas_totals.csv has the history\n",
+                        what, drift, c_.drift_warning, solver_.steps(), solver_.time());
   }
 
   const CaseConfig& c_;
   cip::GasSolver& solver_;
+  std::ostream& log_;
+  cip::GasTotals initial_;
+  bool mass_warned_ = false, energy_warned_ = false;
   std::filesystem::path dir_;
   PvdSeries pvd_;
   std::ofstream totals_;
@@ -137,7 +158,7 @@ void run_gas_case(const CaseConfig& c, std::ostream& log, const RunOptions& opti
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
   cip::GasSolver solver(c.grid, c.eos, c.solver);
   solver.initialise([&](double x, double y) { return c.initial_state(x, y); });
-  GasOutputs out(c, solver);
+  GasOutputs out(c, solver, log);
   out.write_due(0.0, true);
 
   const auto wall_start = Clock::now();

@@ -51,6 +51,8 @@ class GasSolver {
   void step(double dt);
 
   GasTotals totals();
+  //! Cumulative flow out through the outer boundary since initialise() (accumulated every step).
+  const BoundaryOutflow& boundary_outflow() const { return outflow_; }
   //! Samples the gas at host points [m] (a device gather; cost independent of the grid size).
   std::vector<GasSample> sample(const std::vector<std::array<double, 2>>& points);
   HostGasFields to_host();
@@ -74,6 +76,8 @@ class GasSolver {
   DeviceVector<double> dissipation_u_, dissipation_v_;
   double time_ = 0.0;
   long long steps_ = 0;
+  BoundaryOutflow outflow_;
+  void accumulate_boundary_outflow(double dt);
 };
 
 //! Marks a fixed solid through the immersed-boundary input: faces whose point lies inside get velocity 0,

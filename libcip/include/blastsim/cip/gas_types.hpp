@@ -67,6 +67,16 @@ struct GasTotals {
   double total_energy() const { return internal_energy + kinetic_energy; }
 };
 
+//! What has left the domain through its outer boundary since initialise(), per unit depth (negative:
+//! entered). Mass, momentum and energy carried by the flow plus the pressure force and work at the
+//! boundary faces; with the totals it closes the balance of the whole domain (the per-step monitor).
+struct BoundaryOutflow {
+  double mass = 0;        //!< [kg/m]
+  double momentum_x = 0;  //!< [kg/s] including the pressure impulse on the boundary
+  double momentum_y = 0;  //!< [kg/s]
+  double energy = 0;      //!< [J/m] internal + kinetic energy carried out, plus pressure work
+};
+
 //! Cell-centred copy of the state on the host (i fastest), for output.
 struct HostGasFields {
   int nx = 0, ny = 0;
