@@ -223,12 +223,8 @@ struct EnergyUpdateKernel {
 void GasSolver::transport_conservatively(double dt) {
   const GasGrid g = grid_;
   const PaddedShape sh = g.padded_shape();
-  const GasStateView n = state();
-  const GasStateView s = starred_.view(sh);
-  const ImmersedBoundaryView ib = immersed_boundary();
-  const Field2D<const std::uint8_t> active{ib.cell_active.data, sh};
-  const Field2D<const std::uint8_t> u_pres{ib.u_prescribed.data, sh}, v_pres{ib.v_prescribed.data, sh};
-  const Field2D<const double> u_imp{ib.u_imposed.data, sh}, v_imp{ib.v_imposed.data, sh};
+  const StepViews v = step_views();
+  const GasStateView& s = v.starred;
   const Field2D<double> Fx = make_field_view(mass_flux_x_, sh), Fy = make_field_view(mass_flux_y_, sh);
   const Field2D<double> Ex = make_field_view(energy_flux_x_, sh), Ey = make_field_view(energy_flux_y_, sh);
   const Field2D<double> rho_e = make_field_view(internal_energy_density_, sh);
@@ -236,10 +232,10 @@ void GasSolver::transport_conservatively(double dt) {
   const bool px = options_.boundaries.side[left] == BoundaryKind::periodic;
   const bool py = options_.boundaries.side[bottom] == BoundaryKind::periodic;
 
-  for_each_cell("cip.transport.flux_x", 0, g.nx + 1, 0, g.ny, detail::MassFluxKernel{0, s, active, Fx, Ex, dt, g.dx, g.dy, options_.limiter});
-  for_each_cell("cip.transport.flux_y", 0, g.nx, 0, g.ny + 1, detail::MassFluxKernel{1, s, active, Fy, Ey, dt, g.dy, g.dx, options_.limiter});
+  for_each_cell("cip.transport.flux_x", 0, g.nx + 1, 0, g.ny, detail::MassFluxKernel{0, s, v.active, Fx, Ex, dt, g.dx, g.dy, options_.limiter});
+  for_each_cell("cip.transport.flux_y", 0, g.nx, 0, g.ny + 1, detail::MassFluxKernel{1, s, v.active, Fy, Ey, dt, g.dy, g.dx, options_.limiter});
   for_each_cell("cip.transport.cells", 0, g.nx, 0, g.ny,
-                detail::CellFluxUpdateKernel{s, n, active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy});
+                detail::CellFluxUpdateKernel{s, v.now, v.active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy});
   // Interior faces, and wall faces (held at rest, their incoming kinetic energy turned into heat). Outflow
   // faces are set by the ghost fill (characteristic condition); what they carry leaves the domain.
   thrust::fill(thrust::device, dissipation_u_.begin(), dissipation_u_.end(), 0.0);
@@ -248,13 +244,13 @@ void GasSolver::transport_conservatively(double dt) {
   const bool wl = side[left] == BoundaryKind::wall, wr = side[right] == BoundaryKind::wall;
   const bool wb = side[bottom] == BoundaryKind::wall, wt = side[top] == BoundaryKind::wall;
   for_each_cell("cip.transport.momentum_u", px || wl ? 0 : 1, wr ? g.nx + 1 : g.nx, 0, g.ny,
-                detail::MomentumKernel{0, s, n, Fx, Fy, u_pres, u_imp, Du, g.nx, g.ny, px, py, wl, wr, dt, g.dx, g.dy,
+                detail::MomentumKernel{0, s, v.now, Fx, Fy, v.u_prescribed, v.u_imposed, Du, g.nx, g.ny, px, py, wl, wr, dt, g.dx, g.dy,
                                        options_.limiter});
   for_each_cell("cip.transport.momentum_v", 0, g.nx, py || wb ? 0 : 1, wt ? g.ny + 1 : g.ny,
-                detail::MomentumKernel{1, s, n, Fx, Fy, v_pres, v_imp, Dv, g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy,
+                detail::MomentumKernel{1, s, v.now, Fx, Fy, v.v_prescribed, v.v_imposed, Dv, g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy,
                                        options_.limiter});
   for_each_cell("cip.transport.energy", 0, g.nx, 0, g.ny,
-                detail::EnergyUpdateKernel{n, active, rho_e, Du, Dv, g.nx, g.ny, px, py});
+                detail::EnergyUpdateKernel{v.now, v.active, rho_e, Du, Dv, g.nx, g.ny, px, py});
 }
 
 }  // namespace blastsim::cip

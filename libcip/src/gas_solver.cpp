@@ -508,15 +508,21 @@ double GasSolver::max_signal_rate() {
                                        grid_.dy});
 }
 
+StepViews GasSolver::step_views() {
+  const ImmersedBoundaryView ib = immersed_boundary();
+  return {state(), starred_.view(grid_.padded_shape()), ib.cell_active, ib.u_prescribed, ib.v_prescribed,
+          ib.u_imposed, ib.v_imposed};
+}
+
 void GasSolver::step(double dt) {
   const GasGrid g = grid_;
   const PaddedShape sh = g.padded_shape();
-  const GasStateView n = state();
-  const GasStateView s = starred_.view(sh);
-  const ImmersedBoundaryView ib = immersed_boundary();
-  const Field2D<const std::uint8_t> active{ib.cell_active.data, sh};
-  const Field2D<const std::uint8_t> u_pres{ib.u_prescribed.data, sh}, v_pres{ib.v_prescribed.data, sh};
-  const Field2D<const double> u_imp{ib.u_imposed.data, sh}, v_imp{ib.v_imposed.data, sh};
+  const StepViews v = step_views();
+  const GasStateView& n = v.now;
+  const GasStateView& s = v.starred;
+  const auto& active = v.active;
+  const auto &u_pres = v.u_prescribed, &v_pres = v.v_prescribed;
+  const auto &u_imp = v.u_imposed, &v_imp = v.v_imposed;
   const Field2D<double> P = pressure_with_viscosity();
   const Field2D<const double> Pc{P.data, sh}, rho_n{n.rho.f.data, sh};
   const Field2D<const double> us{s.u.f.data, sh}, vs{s.v.f.data, sh};

@@ -1,5 +1,5 @@
 //! \file ghosts.hpp
-//! \brief Internal: the ghost-fill launcher shared by the gas solver's phases.
+//! \brief Internal: the ghost-fill launcher and the per-step views shared by the gas solver's phases.
 #pragma once
 
 #include "blastsim/cip/boundary.hpp"
@@ -38,5 +38,13 @@ BLAST_HD inline double outflow_face_from_state(const GasStateView& s, const GasG
 }
 
 void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryContext& ctx);
+
+//! The views every phase of a step works on: the current state (n), the state after the non-advection
+//! phase (*) and the immersed-boundary input, read-only.
+struct StepViews {
+  GasStateView now, starred;
+  Field2D<const std::uint8_t> active, u_prescribed, v_prescribed;
+  Field2D<const double> u_imposed, v_imposed;
+};
 
 }  // namespace blastsim::cip

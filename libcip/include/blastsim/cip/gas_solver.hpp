@@ -15,6 +15,7 @@
 namespace blastsim::cip {
 
 struct BoundaryContext;
+struct StepViews;
 
 //! One gas solver on one grid. The state lives in device memory; state() and immersed_boundary() expose
 //! views of it so a coupler can read pressures and impose solid velocities without host copies.
@@ -61,6 +62,7 @@ class GasSolver {
 
  private:
   BoundaryContext boundary_context() const;
+  StepViews step_views();
   void transport_conservatively(double dt);
   GasGrid grid_;
   EquationOfState eos_;
