@@ -164,17 +164,23 @@ void run_gas_case(const CaseConfig& c, std::ostream& log, const RunOptions& opti
   const auto wall_start = Clock::now();
   auto last_progress = wall_start;
   double dt = 0.0;
+  // The signal rate [1/s] of the current state: it gives the next dt and, being +inf for an invalid state,
+  // stops the run before that state is written anywhere.
+  auto checked_rate = [&]() {
+    const double r = solver.max_signal_rate();
+    if (!std::isfinite(r))
+      throw InstabilityError(fmt::format("gas state invalid after step {} (t = {:.6e} s): {}; the last good output "
+                                         "is in {}",
+                                         solver.steps(), solver.time(), solver.describe_invalid_cell(),
+                                         c.output_directory));
+    return r;
+  };
+  double rate = checked_rate();
   while (solver.time() < c.end_time * (1 - 1e-12)) {
     if (c.max_steps > 0 && solver.steps() >= c.max_steps) {
       log << fmt::format("stopping at time.max_steps = {} (t = {:.6e} s)\n", c.max_steps, solver.time());
       break;
     }
-    const double rate = solver.max_signal_rate();  // [1/s]
-    if (!std::isfinite(rate))
-      throw InstabilityError(fmt::format("gas state invalid before step {} (t = {:.6e} s): {}; the last good output "
-                                         "is in {}",
-                                         solver.steps() + 1, solver.time(), solver.describe_invalid_cell(),
-                                         c.output_directory));
     if (c.fixed_dt) {
       dt = *c.fixed_dt;
       if (dt * rate > c.courant)
@@ -187,6 +193,7 @@ void run_gas_case(const CaseConfig& c, std::ostream& log, const RunOptions& opti
       if (solver.time() + dt > next) dt = next - solver.time();
     }
     solver.step(dt);
+    rate = checked_rate();
     const bool last = solver.time() >= c.end_time * (1 - 1e-12);
     out.write_due(dt, last);
     const auto now = Clock::now();
