@@ -1,0 +1,53 @@
+//! \file mesh.hpp
+//! \brief Triangle meshes and the FDEM topology built from them: nodes owned per triangle, 4-node joints, boundary edges.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace blastsim::fdem {
+
+//! A conforming triangle mesh as a mesher gives it: shared vertices, triangles by vertex index.
+struct TriangleMesh {
+  std::vector<std::array<double, 2>> vertices;  //!< [m]
+  std::vector<std::array<int, 3>> triangles;    //!< vertex indices, counter-clockwise
+};
+
+//! Checks a mesh; throws InputError naming the first problem: a vertex index out of range, an inverted
+//! (clockwise) or degenerate triangle (area below 1e-12 of its longest edge squared), an edge shared by
+//! more than two triangles (non-manifold), or an empty mesh.
+void check_mesh(const TriangleMesh& mesh);
+
+//! A cohesive joint between two triangles that share an edge. Its four nodes in the FDEM numbering:
+//! the edge of triangle a runs a0 -> a1 (counter-clockwise in a), the coincident edge of b runs b0 -> b1
+//! with b0 at a1's position and b1 at a0's.
+struct Joint {
+  int triangle_a, triangle_b;
+  int a0, a1, b0, b1;
+};
+
+//! An edge of the original mesh boundary: triangle, and its nodes n0 -> n1 (counter-clockwise in it).
+struct BoundaryEdge {
+  int triangle;
+  int n0, n1;
+};
+
+//! FDEM discretisation of a mesh: every triangle owns three nodes (node 3 t + k is vertex k of triangle
+//! t), every interior edge becomes a joint, every boundary edge is listed (it will face the gas).
+struct FdemTopology {
+  std::vector<std::array<double, 2>> node_positions;  //!< [m], 3 per triangle
+  std::vector<Joint> joints;
+  std::vector<BoundaryEdge> boundary_edges;
+  std::vector<int> node_vertex;  //!< the mesh vertex each node came from
+  int triangle_count() const { return static_cast<int>(node_positions.size() / 3); }
+};
+
+//! Builds the FDEM topology (check_mesh() first). Joints and boundary edges come in a deterministic order.
+FdemTopology build_topology(const TriangleMesh& mesh);
+
+//! A structured mesh of nx x ny squares over [x0, x1] x [y0, y1], each square cut into two triangles
+//! along alternating diagonals (for tests and simple specimens).
+TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y0, double y1);
+
+}  // namespace blastsim::fdem

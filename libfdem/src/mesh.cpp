@@ -1,0 +1,120 @@
+//! \file mesh.cpp
+//! \brief Mesh checks, FDEM topology (owned nodes, joints, boundary edges) and a structured rectangle mesh.
+#include "blastsim/fdem/mesh.hpp"
+
+#include "blastsim/core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <utility>
+
+namespace blastsim::fdem {
+
+namespace {
+
+double signed_area(const TriangleMesh& m, const std::array<int, 3>& t) {
+  const auto& a = m.vertices[t[0]];
+  const auto& b = m.vertices[t[1]];
+  const auto& c = m.vertices[t[2]];
+  return 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+}
+
+std::string describe(const TriangleMesh& m, size_t t) {
+  std::ostringstream os;
+  os << "triangle " << t << " (vertices " << m.triangles[t][0] << ", " << m.triangles[t][1] << ", "
+     << m.triangles[t][2] << ")";
+  return os.str();
+}
+
+//! Edge key with the smaller vertex first; value: (triangle, local edge k: vertices k -> k+1).
+using EdgeMap = std::map<std::pair<int, int>, std::vector<std::pair<int, int>>>;
+
+EdgeMap edges_of(const TriangleMesh& m) {
+  EdgeMap edges;
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].push_back({static_cast<int>(t), k});
+    }
+  return edges;
+}
+
+}  // namespace
+
+void check_mesh(const TriangleMesh& m) {
+  if (m.triangles.empty()) throw InputError("mesh has no triangles");
+  const int nv = static_cast<int>(m.vertices.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    for (int v : m.triangles[t])
+      if (v < 0 || v >= nv)
+        throw InputError(describe(m, t) + ": vertex index " + std::to_string(v) + " outside [0, " +
+                         std::to_string(nv) + ")");
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      const auto& a = m.vertices[m.triangles[t][k]];
+      const auto& b = m.vertices[m.triangles[t][(k + 1) % 3]];
+      longest = std::max(longest, std::hypot(b[0] - a[0], b[1] - a[1]));
+    }
+    const double area = signed_area(m, m.triangles[t]);
+    if (!(std::fabs(area) > 1e-12 * longest * longest))
+      throw InputError(describe(m, t) + " is degenerate (area " + std::to_string(area) + " m2)");
+    if (area < 0) throw InputError(describe(m, t) + " is inverted (clockwise); triangles must be counter-clockwise");
+  }
+  for (const auto& [edge, users] : edges_of(m)) {
+    if (users.size() > 2)
+      throw InputError("non-manifold mesh: edge between vertices " + std::to_string(edge.first) + " and " +
+                       std::to_string(edge.second) + " is shared by " + std::to_string(users.size()) + " triangles");
+    if (users.size() == 2) {
+      // Two counter-clockwise triangles traverse a shared edge in opposite directions.
+      const auto& [t0, k0] = users[0];
+      const auto& [t1, k1] = users[1];
+      if (m.triangles[t0][k0] == m.triangles[t1][k1])
+        throw InputError("inconsistent orientation across the edge between vertices " + std::to_string(edge.first) +
+                         " and " + std::to_string(edge.second));
+    }
+  }
+}
+
+FdemTopology build_topology(const TriangleMesh& m) {
+  check_mesh(m);
+  FdemTopology topo;
+  topo.node_positions.reserve(3 * m.triangles.size());
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      topo.node_positions.push_back(m.vertices[t[k]]);
+      topo.node_vertex.push_back(t[k]);
+    }
+  for (const auto& [edge, users] : edges_of(m)) {  // std::map: deterministic order
+    const auto& [ta, ka] = users[0];
+    if (users.size() == 1) {
+      topo.boundary_edges.push_back({ta, 3 * ta + ka, 3 * ta + (ka + 1) % 3});
+      continue;
+    }
+    const auto& [tb, kb] = users[1];
+    topo.joints.push_back({ta, tb, 3 * ta + ka, 3 * ta + (ka + 1) % 3, 3 * tb + kb, 3 * tb + (kb + 1) % 3});
+  }
+  return topo;
+}
+
+TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y0, double y1) {
+  if (nx < 1 || ny < 1) throw InputError("structured_rectangle needs at least one square each way");
+  TriangleMesh m;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) m.vertices.push_back({x0 + (x1 - x0) * i / nx, y0 + (y1 - y0) * j / ny});
+  auto v = [&](int i, int j) { return j * (nx + 1) + i; };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if ((i + j) % 2 == 0) {
+        m.triangles.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+        m.triangles.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+      } else {
+        m.triangles.push_back({v(i, j), v(i + 1, j), v(i, j + 1)});
+        m.triangles.push_back({v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)});
+      }
+    }
+  return m;
+}
+
+}  // namespace blastsim::fdem
