@@ -35,3 +35,22 @@ endfunction()
 function(blastsim_warnings target)
   target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>)
 endfunction()
+
+# blastsim_add_library(<name> EXPORT <export name> SOURCES <files...> [KERNEL_SOURCES <files...>]):
+# a static library blastsim_<name> with alias blastsim::<export name>, public headers in include/, linked
+# to blastsim::core, installed and exported. KERNEL_SOURCES are compiled by nvcc in a CUDA build.
+function(blastsim_add_library name)
+  cmake_parse_arguments(L "" "EXPORT" "SOURCES;KERNEL_SOURCES" ${ARGN})
+  blastsim_kernel_sources(${L_KERNEL_SOURCES})
+  set(target blastsim_${name})
+  add_library(${target} STATIC ${L_SOURCES} ${L_KERNEL_SOURCES})
+  add_library(blastsim::${L_EXPORT} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${L_EXPORT} POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_link_libraries(${target} PUBLIC blastsim::core)
+  blastsim_warnings(${target})
+  install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(TARGETS ${target} EXPORT blastsimTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+endfunction()

@@ -20,6 +20,16 @@ def read_csv(path):
     return {k: [float(r[k]) for r in rows] for k in rows[0]} if rows else {}
 
 
+def save(fig, axes, out_dir, name):
+    """Grids every panel, lays the figure out and writes OUT_DIR/NAME; returns the path."""
+    for a in axes:
+        a.grid(alpha=0.3)
+    fig.tight_layout()
+    target = os.path.join(out_dir, name)
+    fig.savefig(target, dpi=120)
+    return target
+
+
 def plot_lines(out_dir):
     files = sorted(glob.glob(os.path.join(out_dir, "line_*.csv")))
     if not files:
@@ -41,12 +51,7 @@ def plot_lines(out_dir):
     axes[2].set_ylabel("speed [m/s]")
     axes[2].set_xlabel("distance along the probe line [m]")
     axes[0].legend(fontsize=7, ncol=2)
-    for a in axes:
-        a.grid(alpha=0.3)
-    fig.tight_layout()
-    target = os.path.join(out_dir, "line_profiles.png")
-    fig.savefig(target, dpi=120)
-    return target
+    return save(fig, axes, out_dir, "line_profiles.png")
 
 
 def plot_monitor(out_dir):
@@ -68,12 +73,7 @@ def plot_monitor(out_dir):
     axes[1].set_ylabel("relative drift")
     axes[1].set_xlabel("time [ms]")
     axes[1].legend(fontsize=8)
-    for a in axes:
-        a.grid(alpha=0.3)
-    fig.tight_layout()
-    target = os.path.join(out_dir, "conservation.png")
-    fig.savefig(target, dpi=120)
-    return target
+    return save(fig, axes, out_dir, "conservation.png")
 
 
 def main():
