@@ -527,14 +527,14 @@ void GasSolver::step(double dt) {
   const Field2D<const double> Pc{P.data, sh}, rho_n{n.rho.f.data, sh};
   const Field2D<const double> us{s.u.f.data, sh}, vs{s.v.f.data, sh};
 
-  // 1. Boundary values, then P = p + q (paper eqs. 4-5).
-  fill_ghosts(n, g, boundary_context());
+  const BoundaryContext ctx = boundary_context();
+  // 1. P = p + q (paper eqs. 4-5). The ghosts of the current state are valid: initialise(), the end of
+  //    the previous step, or apply_boundaries() after an outside write to state() filled them.
   for_each_cell("cip.pressure", 0, g.nx, 0, g.ny,
                 detail::PressureKernel{n, active, P, eos_, options_.viscosity.linear, options_.viscosity.quadratic});
   for_each_index("cip.pressure.ghosts", 2 * static_cast<index_t>(g.nx + g.ny),
                  detail::PressureGhostKernel{P, g.nx, g.ny, options_.boundaries});
   // 2. Non-advection phase: face velocities, then density and energy (paper eqs. 1-3).
-  const BoundaryContext ctx = boundary_context();
   for_each_cell("cip.face_velocity.u", 0, g.nx + 1, 0, g.ny,
                 detail::FaceVelocityKernel{0, n, s.u.f, rho_n, Pc, active, u_pres, u_imp, g, ctx, dt});
   for_each_cell("cip.face_velocity.v", 0, g.nx, 0, g.ny + 1,

@@ -41,7 +41,7 @@ struct Flatten2D {
   }
 };
 template <class F, class T>
-struct MaxOver {
+struct Transformed {
   F f;
   BLAST_HD T operator()(index_t k) const { return f(k); }
 };
@@ -61,7 +61,7 @@ template <class T, class F>
 T reduce_max(const char* label, index_t n, T init, F f) {
   (void)label;
   return thrust::transform_reduce(thrust::device, thrust::counting_iterator<index_t>(0),
-                                  thrust::counting_iterator<index_t>(n), detail::MaxOver<F, T>{f}, init,
+                                  thrust::counting_iterator<index_t>(n), detail::Transformed<F, T>{f}, init,
                                   thrust::maximum<T>());
 }
 
@@ -71,7 +71,7 @@ template <class T, class F>
 T reduce_sum(const char* label, index_t n, T init, F f) {
   (void)label;
   return thrust::transform_reduce(thrust::device, thrust::counting_iterator<index_t>(0),
-                                  thrust::counting_iterator<index_t>(n), detail::MaxOver<F, T>{f}, init,
+                                  thrust::counting_iterator<index_t>(n), detail::Transformed<F, T>{f}, init,
                                   thrust::plus<T>());
 }
 

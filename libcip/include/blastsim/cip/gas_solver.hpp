@@ -34,12 +34,14 @@ class GasSolver {
   //! them, as in the paper's Table 1); fills the ghosts. Also takes the outflow reference state.
   void initialise(const std::function<GasPoint(double x, double y)>& state_at);
 
+  //! Views of the current state; after writing interior values, call apply_boundaries().
   GasStateView state() { return state_.view(grid_.padded_shape()); }
   ImmersedBoundaryView immersed_boundary() { return immersed_.view(grid_.padded_shape()); }
   //! Cell-centred pressure p + q of the last step's non-advection phase [Pa] (padded shape).
   Field2D<double> pressure_with_viscosity() { return make_field_view(pressure_, grid_.padded_shape()); }
 
-  //! Fills ghost values from the outer boundary conditions.
+  //! Fills ghost values from the outer boundary conditions. initialise() and step() leave them filled;
+  //! call this after writing to the interior through state().
   void apply_boundaries();
 
   //! max over active cells of max((|u_c| + c)/dx, (|v_c| + c)/dy) [1/s]; +infinity when any active cell
