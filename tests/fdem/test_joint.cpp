@@ -20,8 +20,8 @@ JointStrength paper_joint() {
           std::tan(rock.friction_angle),
           2 * h * rock.tensile_strength / p,
           2 * h * rock.cohesion / p,
-          softening_length(rock.fracture_energy_mode1, rock.tensile_strength),
-          softening_length(rock.fracture_energy_mode2, rock.cohesion)};
+          softening_length(rock.fracture_energy_mode1, rock.tensile_strength, 2 * h * rock.tensile_strength / p),
+          softening_length(rock.fracture_energy_mode2, rock.cohesion, 2 * h * rock.cohesion / p)};
 }
 
 //! Work per unit area [J/m2] of the traction along a monotone path from (o0, s0) to (o1, s1), by the
@@ -54,10 +54,11 @@ TEST_CASE("Munjiza's softening curve: end values and its integral", "[fdem][join
 TEST_CASE("Pure mode I and mode II: dissipated energy per unit area equals G_I and G_II", "[fdem][joint][F3]") {
   const RockMaterial rock = RockMaterial::paper_table2();
   const JointStrength j = paper_joint();
-  // Mode I: open from the peak to full separation; the pre-peak part is elastic and is not dissipated.
-  const double g1 = work(j, j.peak_opening, j.peak_opening + j.opening_softening, 0, 0);
-  // Mode II at zero normal stress: slide from the peak slip to failure.
-  const double g2 = work(j, 0, 0, j.peak_slip, j.peak_slip + j.slip_softening);
+  // Mode I: open from rest to full separation. Once broken the joint holds nothing, so all the work done on
+  // it, pre-peak part included, has been dissipated.
+  const double g1 = work(j, 0, j.peak_opening + j.opening_softening, 0, 0);
+  // Mode II at zero normal stress: slide from rest to failure.
+  const double g2 = work(j, 0, 0, 0, j.peak_slip + j.slip_softening);
   std::printf("F3 (law): mode I %.3f J/m2 (G_I %.1f), mode II %.3f J/m2 (G_II %.1f)\n", g1,
               rock.fracture_energy_mode1, g2, rock.fracture_energy_mode2);
   CHECK_THAT(g1, WithinRel(rock.fracture_energy_mode1, 0.001));

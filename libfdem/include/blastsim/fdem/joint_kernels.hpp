@@ -21,10 +21,13 @@ BLAST_HD inline double softening_curve(double D) {
 //! Integral of softening_curve() over D in [0, 1] (about 0.386), computed once by quadrature.
 double softening_curve_integral();
 
-//! Softening length [m] that makes the energy dissipated per unit joint area after the peak equal the
-//! fracture energy G [J/m2] at strength f [Pa]: G / (f * softening_curve_integral()), about 2.59 G / f.
-//! (The Y codes' 3 G / f dissipates about 1.16 G: fdem.md's "16 % trap".)
-double softening_length(double fracture_energy, double strength);
+//! Softening length [m] chosen so that breaking a joint point from rest dissipates exactly the fracture
+//! energy G [J/m2] at strength f [Pa] and peak separation `peak` [m]: the work of the whole curve is the
+//! pre-peak part (2/3) f peak plus the softening part f x length x softening_curve_integral(), so
+//! length = (G - (2/3) f peak) / (f softening_curve_integral()), about 2.59 G / f when the peak part is small.
+//! (The Y codes' 3 G / f dissipates about 1.16 G plus the peak part: fdem.md's "16 % trap".) Throws
+//! InputError when the pre-peak part alone exceeds G (element too large or joint penalty too small).
+double softening_length(double fracture_energy, double strength, double peak);
 
 //! Peak-stress parameters of one joint integration point.
 struct JointStrength {
@@ -33,8 +36,8 @@ struct JointStrength {
   double tan_friction;      //!< tan(phi) [-]
   double peak_opening;      //!< o_p = 2 h f_t / p [m]
   double peak_slip;         //!< s_p = 2 h c / p [m] (at zero normal stress)
-  double opening_softening; //!< o_t [m], softening_length(G_I, f_t)
-  double slip_softening;    //!< s_t [m], softening_length(G_II, c)
+  double opening_softening; //!< o_t [m], softening_length(G_I, f_t, o_p)
+  double slip_softening;    //!< s_t [m], softening_length(G_II, c, s_p)
 };
 
 //! Tractions and damage at one integration point.

@@ -48,6 +48,20 @@ BLAST_HD inline Mat2 triangle_stress(const Mat2& inv_F0, const Mat2& FX, const M
           mu * (B.d - 1.0) / J + volumetric + eta * L.d};
 }
 
+//! Elastic energy per unit initial area [J/m2] whose derivative is triangle_stress() without damping:
+//! W = mu/2 (tr B - 2 - 2 ln J) + lambda/4 (J^2 - 1 - 2 ln J) (a compressible neo-Hookean solid; the
+//! Kirchhoff stress 2 B dW/dB gives T J = mu (B - I) + lambda/2 (J^2 - 1) I).
+BLAST_HD inline double triangle_strain_energy_density(const Mat2& inv_F0, const Mat2& FX, double lambda, double mu) {
+  // Written in H = F - I and j = J - 1 so that a body at rest gives round-off squared, not round-off.
+  const Mat2 F = FX * inv_F0;
+  const double ha = F.a - 1.0, hb = F.b, hc = F.c, hd = F.d - 1.0;
+  const double j = ha + hd + ha * hd - hb * hc;
+  const double ln_j = log1p(j);
+  const double dev = 2.0 * (ha + hd - ln_j) + ha * ha + hb * hb + hc * hc + hd * hd;  // tr B - 2 - 2 ln J
+  const double vol = 2.0 * (j - ln_j) + j * j;                                       // J^2 - 1 - 2 ln J
+  return 0.5 * mu * dev + 0.25 * lambda * vol;
+}
+
 //! Forces [N per m depth] that a triangle under Cauchy stress T exerts on its three nodes (current
 //! positions p0, p1, p2, counter-clockwise): f_i = T n_i / 2, n_i the outward normal of the edge opposite
 //! node i scaled by its length. They sum to zero.

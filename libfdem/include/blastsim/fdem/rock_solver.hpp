@@ -1,0 +1,161 @@
+//! \file rock_solver.hpp
+//! \brief The FDEM rock solver: explicit step of elastic triangles, cohesive joints, contact with friction.
+//!
+//! Device-array interface (what the gas coupling and other codes use): node positions and velocities, one
+//! pressure per triangle edge (`edge_pressure()`, applied only where `edge_exposed()` is set: the mesh
+//! boundary and both faces of every broken joint). Edge slot 3 t + k of triangle t runs from node 3 t + k to
+//! node 3 t + (k + 1) % 3 (nodes counter-clockwise), so a slot index is also the index of its first node.
+//! Force assembly is a gather (every node sums its own contributions), so results are bitwise repeatable.
+#pragma once
+
+#include "blastsim/core/backend.hpp"
+#include "blastsim/fdem/material.hpp"
+#include "blastsim/fdem/mesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace blastsim::fdem {
+
+namespace detail {
+struct RockArrays;
+}
+
+//! Numerical parameters of the rock model (the physical ones are in RockMaterial).
+struct RockOptions {
+  double joint_penalty_factor = 10.0;    //!< joint penalty p / E [-] (fdem.md: 10 to 100)
+  double contact_penalty_factor = 10.0;  //!< contact penalty p_c / E [-]
+  double damping_ratio = 0.0;            //!< beta in eta = 2 h beta sqrt(E rho), in [0, 1)
+  std::array<double, 2> gravity{0.0, 0.0};  //!< [m/s2]
+  bool contact = true;                   //!< contact between pieces on or off
+  double contact_buffer = 0.25;          //!< broad-phase buffer as a fraction of the largest element size
+  void validate() const;
+};
+
+//! Cumulative energies per unit thickness [J/m]. Balance: kinetic + strain + joint_work + contact_work +
+//! damping = initial kinetic + initial strain + external_work (to time-integration error).
+struct RockEnergies {
+  double kinetic = 0;
+  double strain = 0;               //!< elastic energy of the triangles (hyperelastic potential of the stress)
+  double joint_work = 0;           //!< work done on the cohesive joints (stored + dissipated)
+  double joint_stored = 0;         //!< elastic energy still held by the joints (secant estimate)
+  double fracture_dissipated = 0;  //!< joint_work - joint_stored
+  double contact_work = 0;         //!< work done on contacts (penalty energy + friction)
+  double friction_dissipated = 0;  //!< of which dissipated by Coulomb friction
+  double damping_dissipated = 0;   //!< by the triangles' viscous damping
+  double external_work = 0;        //!< of pressures, gravity and prescribed-velocity supports
+  int broken_joints = 0;
+  double crack_length = 0;         //!< total length of broken joints [m]
+};
+
+//! Host copy of the rock for output.
+struct RockSnapshot {
+  std::vector<double> x, y, vx, vy;     //!< per node [m], [m/s]
+  std::vector<double> x0, y0;           //!< initial node positions [m]
+  std::vector<double> stress;           //!< per triangle: sxx, sxy, syy [Pa] (3 per triangle)
+  std::vector<double> joint_damage;     //!< per joint: largest damage of its three points, in [0, 1]
+  std::vector<std::uint8_t> joint_broken;
+  std::vector<std::array<int, 4>> joint_nodes;  //!< a0, a1, b0, b1
+};
+
+//! Non-owning device views of the rock state, for coupling kernels.
+struct RockView {
+  const double* x;
+  const double* y;
+  const double* vx;
+  const double* vy;
+  const std::uint8_t* edge_exposed;  //!< per edge slot: 1 if the edge faces gas (boundary or broken joint)
+  double* edge_pressure;             //!< per edge slot [Pa], read by the next step
+  int triangles;
+};
+
+class RockSolver {
+ public:
+  RockSolver(const FdemTopology& topology, const RockMaterial& material, const RockOptions& options);
+
+  //! Largest stable time step [s] of the explicit scheme: 2 / omega_max, omega_max^2 bounded per triangle
+  //! by 4 c_p^2 / h^2 (h its smallest altitude) + 6 sqrt(2) p / (rho A) (joint penalty p) + 36 p_c / (rho h^2)
+  //! (contact penalty p_c, when contact is on), reduced for damping by sqrt(1 + beta^2) - beta.
+  double stable_dt() const { return stable_dt_; }
+
+  //! Advances by dt [s]. Throws InputError if dt > stable_dt(), InstabilityError on a non-finite state.
+  void step(double dt);
+
+  // --- loads and constraints (host calls between steps) ---
+  //! Prescribes the velocity of `nodes` [m/s] along x and/or y (fixed nodes: zero velocity).
+  void prescribe_velocity(const std::vector<int>& nodes, bool along_x, bool along_y, double vx, double vy);
+  //! Sets every node's velocity [m/s] from a host array of 2 per node.
+  void set_velocities(const std::vector<double>& vxy);
+  //! Pressure [Pa] on the given edge slots (the rest keep theirs); pushes into the rock.
+  void set_edge_pressure(const std::vector<int>& slots, double pressure);
+  //! Multiplier of every edge pressure (a load ramp), 1 by default.
+  void set_pressure_scale(double s) { pressure_scale_ = s; }
+
+  // --- device-array interface ---
+  RockView view();
+  DeviceVector<double>& edge_pressure() { return edge_pressure_; }
+  const DeviceVector<std::uint8_t>& edge_exposed() const { return edge_exposed_; }
+
+  // --- diagnostics and output (host copies; each costs a device sync) ---
+  RockEnergies energies();
+  RockSnapshot snapshot() const;
+  //! Sum over nodes of the contact force magnitude [N/m] of the last step (0: nothing touches).
+  double contact_force_norm();
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  int triangle_count() const { return triangles_; }
+  int node_count() const { return 3 * triangles_; }
+  int joint_count() const { return joints_; }
+  const std::vector<BoundaryEdge>& boundary_edges() const { return boundary_edges_; }
+  const RockMaterial& material() const { return material_; }
+  //! Number of contact-grid rebuilds so far (broad phase).
+  long contact_rebuilds() const { return rebuilds_; }
+  //! Rebuilds the contact broad phase (uniform grid, triangles sorted by cell). step() calls it whenever the
+  //! nodes may have travelled half the buffer since the last build; public for benchmarks.
+  void rebuild_contact_grid();
+
+ private:
+  detail::RockArrays arrays();
+
+  RockMaterial material_;
+  RockOptions options_;
+  int triangles_ = 0, joints_ = 0;
+  std::vector<BoundaryEdge> boundary_edges_;
+  std::vector<std::array<int, 4>> joint_nodes_host_;
+  double stable_dt_ = 0, time_ = 0, pressure_scale_ = 1.0, dt_prev_ = 0;
+  long steps_ = 0, rebuilds_ = 0;
+
+  // nodes (3 per triangle)
+  DeviceVector<double> x_, y_, vx_, vy_, x0_, y0_, mass_;
+  DeviceVector<double> f_tri_x_, f_tri_y_, f_con_x_, f_con_y_;  // triangle and contact forces per node
+  DeviceVector<std::uint8_t> constraint_;                      // bit 0: x prescribed, bit 1: y prescribed
+  DeviceVector<double> v_prescribed_;                           // 2 per node
+  DeviceVector<double> work_;                                   // 4 per node: external, joint, contact, support
+  // triangles
+  DeviceVector<double> inv_f0_;      // 4 per triangle
+  DeviceVector<double> area0_, eta_;  // [m2], damping coefficient [Pa s]
+  DeviceVector<double> stress_;      // 3 per triangle
+  DeviceVector<double> dissipation_;  // 2 per triangle: cumulative damping, friction [J/m]
+  // edge slots (3 per triangle)
+  DeviceVector<double> slot_force_;  // 4 per slot: joint force on the slot's first and second node
+  DeviceVector<int> slot_neighbour_;  // triangle across the edge, or -1
+  DeviceVector<int> slot_joint_;      // joint across the edge, or -1
+  DeviceVector<std::uint8_t> edge_exposed_;
+  DeviceVector<double> edge_pressure_;
+  // joints
+  DeviceVector<int> joint_nodes_;     // 4 per joint: a0, a1, b0, b1
+  DeviceVector<double> joint_strength_;  // 8 per joint: JointStrength, then the initial length [m]
+  DeviceVector<double> joint_damage_;    // 3 per joint
+  DeviceVector<double> joint_state_;     // 6 per joint: opening and slip at the three points [m]
+  DeviceVector<double> joint_traction_;  // 6 per joint: sigma and tau at the three points [Pa]
+  DeviceVector<std::uint8_t> joint_broken_;
+  // contact broad phase: uniform grid, triangles sorted by cell
+  DeviceVector<int> cell_key_, sorted_triangles_, cell_start_, cell_end_;
+  DeviceVector<int> neighbour_offset_, neighbour_list_;  // candidates within the buffer, per triangle (CSR)
+  double cell_size_ = 0, grid_x0_ = 0, grid_y0_ = 0;
+  int grid_nx_ = 0, grid_ny_ = 0;
+  double buffer_ = 0, travel_since_build_ = 0;
+};
+
+}  // namespace blastsim::fdem

@@ -1,0 +1,346 @@
+//! \file test_rock_solver.cpp
+//! \brief FDEM solver validation (docs validation.md F1, F3, F4, F5, F7) and bitwise determinism.
+#include "blastsim/core/error.hpp"
+#include "blastsim/fdem/joint_kernels.hpp"
+#include "blastsim/fdem/rock_solver.hpp"
+#include "catch.hpp"
+#include "rock_cases.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+using namespace blastsim::fdem;
+using namespace blastsim::fdem::testing;
+
+namespace {
+
+//! A soft rock-like material for the long friction tests (friction physics is independent of stiffness), with
+//! fracture energies raised to match its larger joint peak separations (no joint comes near breaking).
+RockMaterial soft_rock() {
+  RockMaterial m = RockMaterial::paper_table2();
+  m.youngs_modulus = 5.5e7;
+  m.fracture_energy_mode1 = 1e5;
+  m.fracture_energy_mode2 = 1e5;
+  return m;
+}
+
+double total_mass(const RockSolver& s, const FdemTopology& topo) {
+  (void)s;
+  double m = 0;
+  for (int t = 0; t < topo.triangle_count(); ++t) {
+    const auto& a = topo.node_positions[3 * t];
+    const auto& b = topo.node_positions[3 * t + 1];
+    const auto& c = topo.node_positions[3 * t + 2];
+    m += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("F7: a body at rest stays at rest: no force, no damage, constant energy", "[fdem][F7]") {
+  const FdemTopology topo = build_topology(structured_rectangle(20, 8, 0.0, 0.2, 0.0, 0.08));
+  RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
+  run_to(s, 400 * s.stable_dt(), s.stable_dt());
+  const RockSnapshot snap = s.snapshot();
+  double max_dx = 0, max_v = 0, max_stress = 0, max_damage = 0;
+  for (size_t n = 0; n < snap.x.size(); ++n) {
+    max_dx = std::fmax(max_dx, std::hypot(snap.x[n] - snap.x0[n], snap.y[n] - snap.y0[n]));
+    max_v = std::fmax(max_v, std::hypot(snap.vx[n], snap.vy[n]));
+  }
+  for (double v : snap.stress) max_stress = std::fmax(max_stress, std::fabs(v));
+  for (double d : snap.joint_damage) max_damage = std::fmax(max_damage, d);
+  const RockEnergies e = s.energies();
+  std::printf("F7: 400 steps at rest: max |u| %.2e m, max |v| %.2e m/s, max |stress| %.2e Pa, energy %.2e J/m\n",
+              max_dx, max_v, max_stress, e.kinetic + e.strain);
+  // Round-off scales: F = FX F0^-1 is the identity to ~1e-14, so stresses are ~1e-14 E, speeds ~1e-14 c_p,
+  // energies ~(1e-14)^2 E A; bounds 100 x those. No joint may see any damage.
+  const RockMaterial rock = RockMaterial::paper_table2();
+  CHECK(max_stress < 1e-12 * rock.youngs_modulus);
+  CHECK(max_v < 1e-12 * rock.p_wave_speed());
+  CHECK(max_dx < 1e-12 * 0.01);
+  CHECK(max_damage == 0.0);
+  CHECK(e.broken_joints == 0);
+  CHECK(e.kinetic + e.strain < 1e-24 * rock.youngs_modulus * 0.016);
+}
+
+TEST_CASE("F1: P-wave in a laterally confined bar: speed and stress behind the front", "[fdem][F1]") {
+  const double L = 0.6, H = 0.03, v0 = 0.1;  // [m], [m/s]
+  const int nx = 120, ny = 6;
+  for (double pf : {100.0, 10.0}) {
+    const FdemTopology topo = build_topology(structured_rectangle(nx, ny, 0.0, L, 0.0, H));
+    const RockMaterial rock = RockMaterial::paper_table2();
+    RockOptions opt;
+    opt.joint_penalty_factor = pf;
+    opt.contact = false;
+    RockSolver s(topo, rock, opt);
+    s.prescribe_velocity(nodes_where(topo, [&](double, double y) { return y < 1e-9 || y > H - 1e-9; }), false, true,
+                         0, 0);  // rollers: plane-strain, laterally confined (1-D strain)
+    s.prescribe_velocity(nodes_where(topo, [](double x, double) { return x < 1e-9; }), true, false, v0, 0);
+    const double c_expected = rock.p_wave_speed() / std::sqrt(1 + 1.24 / pf);
+    const double dt = 0.9 * s.stable_dt();
+    // Front = where the section-averaged velocity crosses v0 / 2; measured at two times.
+    auto front = [&]() {
+      const RockSnapshot snap = s.snapshot();
+      const int bins = 600;
+      std::vector<double> sum(bins, 0), count(bins, 0);
+      for (size_t n = 0; n < snap.x.size(); ++n) {
+        const int b = std::min(bins - 1, static_cast<int>(snap.x0[n] / L * bins));
+        sum[b] += snap.vx[n], count[b] += 1;
+      }
+      for (int b = 0; b < bins; ++b)
+        if (count[b] > 0 && sum[b] / count[b] < 0.5 * v0) return (b + 0.5) * L / bins;
+      return L;
+    };
+    const double t1 = 0.25 * L / c_expected, t2 = 0.75 * L / c_expected;
+    run_to(s, t1, dt);
+    const double x1 = front();
+    run_to(s, t2, dt);
+    const double x2 = front();
+    const double c_measured = (x2 - x1) / (t2 - t1);
+    // Stress behind the front: mean sxx of the triangles with centroids in [0.1 L, x2 - 0.1 L].
+    const RockSnapshot snap = s.snapshot();
+    double sxx = 0;
+    int count = 0;
+    for (int t = 0; t < topo.triangle_count(); ++t) {
+      const double cx = (snap.x0[3 * t] + snap.x0[3 * t + 1] + snap.x0[3 * t + 2]) / 3;
+      if (cx > 0.1 * L && cx < x2 - 0.1 * L) sxx += snap.stress[3 * t], ++count;
+    }
+    sxx /= count;
+    const double s_expected = -rock.density * c_expected * v0;
+    std::printf("F1 (pf = %g): c = %.1f m/s vs %.1f m/s (%+.2f %%); sxx behind front %.4e vs %.4e Pa (%+.2f %%)\n",
+                pf, c_measured, c_expected, 100 * (c_measured / c_expected - 1), sxx, s_expected,
+                100 * (sxx / s_expected - 1));
+    if (pf == 100.0) {
+      CHECK(std::fabs(c_measured / c_expected - 1) < 0.02);
+      CHECK(std::fabs(sxx / s_expected - 1) < 0.02);
+    } else {
+      // Reported, not asserted: at pf = 10 the joint compliance of this structured mesh (vertical,
+      // horizontal and diagonal joints) exceeds fdem.md's 1.24 / pf; the measured coefficient is printed.
+      const double k = (std::pow(rock.p_wave_speed() / c_measured, 2) - 1) * pf;
+      std::printf("    pf = %g: compliance coefficient of this mesh (c_p/c)^2 - 1 = %.2f / pf (fdem.md: 1.24 / pf)\n",
+                  pf, k);
+      CHECK(c_measured < rock.p_wave_speed());
+    }
+  }
+}
+
+namespace {
+//! F3 specimen: two strips joined along y = 0 (length n s), bottom edge fixed, top edge moved at (vx, vy)
+//! until the interface has broken; returns the energy dissipated per unit crack length [J/m2].
+double fracture_energy_per_length(int n, double s, const RockMaterial& rock, double vx, double vy, int& broken) {
+  const FdemTopology topo = build_topology(two_strips(n, s));
+  RockOptions opt;
+  opt.contact = false;
+  RockSolver solver(topo, rock, opt);
+  const double h = s * std::sqrt(3.0) / 2;
+  solver.prescribe_velocity(nodes_where(topo, [&](double, double y) { return y < -h + 1e-9; }), true, true, 0, 0);
+  solver.prescribe_velocity(nodes_where(topo, [&](double, double y) { return y > h - 1e-9; }), true, true, vx, vy);
+  // Past complete softening: separation of 1.5 softening lengths.
+  const double travel = 1.5 * std::max(softening_length(rock.fracture_energy_mode1, rock.tensile_strength, 0),
+                                       softening_length(rock.fracture_energy_mode2, rock.cohesion, 0));
+  run_to(solver, travel / std::hypot(vx, vy), 0.9 * solver.stable_dt());
+  const RockEnergies e = solver.energies();
+  broken = e.broken_joints;
+  const double dissipated = e.external_work - e.kinetic - e.strain - e.joint_stored - e.damping_dissipated;
+  std::printf("    n = %d, s = %.4f m: external %.5e, kinetic %.3e, strain %.3e, joint stored %.3e, "
+              "fracture (solver) %.5e J/m; %d joints broken\n",
+              n, s, e.external_work, e.kinetic, e.strain, e.joint_stored, e.fracture_dissipated, broken);
+  return dissipated / (n * s);
+}
+}  // namespace
+
+TEST_CASE("F3: fracture energy per unit crack length equals G_I and G_II at two element sizes", "[fdem][F3]") {
+  const double L = 0.04;
+  RockMaterial rock = RockMaterial::paper_table2();
+  for (int n : {4, 16}) {
+    int broken = 0;
+    const double g1 = fracture_energy_per_length(n, L / n, rock, 0.0, 0.2, broken);
+    std::printf("F3 mode I, element size %.4f m: %.3f J/m2 (G_I %.1f, %+.2f %%)\n", L / n, g1,
+                rock.fracture_energy_mode1, 100 * (g1 / rock.fracture_energy_mode1 - 1));
+    CHECK(broken == n);  // exactly the interface line
+    CHECK(std::fabs(g1 / rock.fracture_energy_mode1 - 1) < 0.03);
+  }
+  // Mode II: a tensile strength above the shear stress that the inclined joints see (0.87 c) keeps the
+  // crack on the sheared line (pure shear would otherwise open wing cracks, as real rock does).
+  // (G_I raised with it, so that the tensile pre-peak energy stays below G_I; it plays no part here.)
+  rock.tensile_strength = 60e6;
+  rock.fracture_energy_mode1 = 2000;
+  for (int n : {4, 16}) {
+    int broken = 0;
+    const double g2 = fracture_energy_per_length(n, L / n, rock, 0.2, 0.0, broken);
+    std::printf("F3 mode II, element size %.4f m: %.3f J/m2 (G_II %.1f, %+.2f %%)\n", L / n, g2,
+                rock.fracture_energy_mode2, 100 * (g2 / rock.fracture_energy_mode2 - 1));
+    CHECK(broken == n);
+    CHECK(std::fabs(g2 / rock.fracture_energy_mode2 - 1) < 0.03);
+  }
+}
+
+TEST_CASE("F5: two equal elastic bars collide: momentum, swapped velocities, energy, contact time",
+          "[fdem][F5][contact]") {
+  // 80 x 8 squares per bar: the lattice's dispersion leaves 1.7 % of the energy ringing inside the bars
+  // after they part (40 x 8: 2.5 %), so this is the coarsest mesh that meets the 2 % bound.
+  const double L = 0.1, H = 0.02, v0 = 1.0, gap = 1e-4;
+  const int nx = 80, ny = 8;
+  const TriangleMesh mesh =
+      merge(structured_rectangle(nx, ny, -L - gap / 2, -gap / 2, 0, H), structured_rectangle(nx, ny, gap / 2, L + gap / 2, 0, H));
+  const FdemTopology topo = build_topology(mesh);
+  const RockMaterial rock = RockMaterial::paper_table2();
+  RockOptions opt;
+  opt.joint_penalty_factor = 100;  // wave speed within 0.6 % of c_p (contact penalty: the default 10 E)
+  RockSolver s(topo, rock, opt);
+  s.prescribe_velocity(nodes_where(topo, [&](double, double y) { return y < 1e-9 || y > H - 1e-9; }), false, true, 0, 0);
+  std::vector<double> v(2 * s.node_count());
+  for (int n = 0; n < s.node_count(); ++n) v[2 * n] = topo.node_positions[n][0] < 0 ? v0 : -v0;
+  s.set_velocities(v);
+  const double mass = rock.density * total_mass(s, topo);
+  const double ke0 = 0.5 * mass * v0 * v0;
+  const double c = rock.p_wave_speed() / std::sqrt(1 + 1.24 / opt.joint_penalty_factor);
+  const double dt = 0.9 * s.stable_dt();
+  // In contact = a contact force above 1e-3 of the impact force rho c v0 H (vertex neighbours inside each
+  // bar touch at round-off level).
+  const double threshold = 1e-3 * rock.density * c * v0 * H;
+  double t_first = -1, t_last = -1, max_p = 0;
+  const std::vector<double> m_host = [&] {
+    std::vector<double> m;
+    for (int t = 0; t < topo.triangle_count(); ++t) {
+      const auto& a = topo.node_positions[3 * t];
+      const auto& b = topo.node_positions[3 * t + 1];
+      const auto& cc = topo.node_positions[3 * t + 2];
+      const double A = 0.5 * ((b[0] - a[0]) * (cc[1] - a[1]) - (cc[0] - a[0]) * (b[1] - a[1]));
+      for (int k = 0; k < 3; ++k) m.push_back(rock.density * A / 3);
+    }
+    return m;
+  }();
+  long step = 0;
+  run_to(s, gap / (2 * v0) + 3 * L / c, dt, [&] {
+    if (++step % 500 == 0) {  // momentum now and then
+      const RockSnapshot snap = s.snapshot();
+      double p = 0;
+      for (size_t n = 0; n < snap.vx.size(); ++n) p += m_host[n] * snap.vx[n];
+      max_p = std::fmax(max_p, std::fabs(p));
+    }
+    if (s.contact_force_norm() > threshold) {
+      if (t_first < 0) t_first = s.time();
+      t_last = s.time();
+    }
+  });
+  const RockSnapshot snap = s.snapshot();
+  double p_left = 0, m_left = 0;
+  for (size_t n = 0; n < snap.vx.size(); ++n)
+    if (snap.x0[n] < 0) p_left += m_host[n] * snap.vx[n], m_left += m_host[n];
+  const RockEnergies e = s.energies();
+  const double duration = t_last - t_first + dt;
+  std::printf("F5: max |momentum| %.2e of %.3e kg m/s; left bar %.4f m/s (expected %.1f); kinetic %.4f of initial; "
+              "contact %.3f us vs 2L/c %.3f us (%+.2f %%)\n",
+              max_p, mass * v0, p_left / m_left, -v0, e.kinetic / ke0, 1e6 * duration, 2e6 * L / c,
+              100 * (duration / (2 * L / c) - 1));
+  CHECK(max_p < 1e-12 * mass * v0);
+  CHECK(std::fabs(p_left / m_left + v0) < 0.02 * v0);
+  CHECK(std::fabs(e.kinetic / ke0 - 1) < 0.02);
+  CHECK(std::fabs(duration / (2 * L / c) - 1) < 0.05);
+}
+
+namespace {
+//! F4 set-up: a fixed base [-0.3, 0.3] x [-0.05, 0] and a block [0, 0.1] x [0, 0.05] resting on it.
+struct SlidingBlock {
+  FdemTopology topo;
+  RockSolver solver;
+  std::vector<int> block;
+  SlidingBlock(double gx, double gy, double v0)
+      : topo(build_topology(merge(structured_rectangle(24, 2, -0.3, 0.3, -0.05, 0.0),
+                                  structured_rectangle(4, 2, 0.0, 0.1, 0.0, 0.05)))),
+        solver(topo, soft_rock(), options(gx, gy)) {
+    solver.prescribe_velocity(nodes_where(topo, [](double, double y) { return y < -1e-9; }), true, true, 0, 0);
+    std::vector<double> v(2 * solver.node_count(), 0.0);
+    for (int t = 96; t < topo.triangle_count(); ++t)  // the base's 2 x 24 x 2 triangles come first
+      for (int k = 0; k < 3; ++k) block.push_back(3 * t + k), v[2 * (3 * t + k)] = v0;
+    solver.set_velocities(v);
+  }
+  static RockOptions options(double gx, double gy) {
+    RockOptions o;
+    o.gravity = {gx, gy};
+    return o;
+  }
+  //! Mean x position and velocity of the block's nodes.
+  void block_motion(double& x, double& vx) const {
+    const RockSnapshot s = solver.snapshot();
+    x = vx = 0;
+    for (int n : block) x += s.x[n] - s.x0[n], vx += s.vx[n];
+    x /= block.size(), vx /= block.size();
+  }
+};
+}  // namespace
+
+TEST_CASE("F4: a block sliding with friction stops after v0^2 / (2 mu g)", "[fdem][F4][contact]") {
+  const double g = 9.81, v0 = 0.5, mu = soft_rock().contact_friction;
+  SlidingBlock b(0.0, -g, v0);
+  const double dt = 0.9 * b.solver.stable_dt();
+  const double t_stop = v0 / (mu * g);
+  run_to(b.solver, 1.3 * t_stop, dt);
+  double x, vx;
+  b.block_motion(x, vx);
+  const double expected = v0 * v0 / (2 * mu * g);
+  std::printf("F4 flat: stopped after %.5f m vs v0^2/(2 mu g) = %.5f m (%+.2f %%), final speed %.2e m/s\n", x,
+              expected, 100 * (x / expected - 1), vx);
+  CHECK(std::fabs(x / expected - 1) < 0.02);
+  CHECK(std::fabs(vx) < 1e-2 * v0);  // stopped (what remains is the block rocking on its undamped contact)
+}
+
+TEST_CASE("F4: on an incline the block accelerates at g (sin - mu cos) or sticks when tan <= mu",
+          "[fdem][F4][contact]") {
+  const double g = 9.81, mu = soft_rock().contact_friction;
+  // The incline is modelled by tilting gravity: the base stays horizontal.
+  for (double deg : {45.0, 25.0}) {
+    const double th = deg * M_PI / 180;
+    SlidingBlock b(g * std::sin(th), -g * std::cos(th), 0.0);
+    const double dt = 0.9 * b.solver.stable_dt();
+    const double t1 = 0.02, t2 = 0.06;
+    run_to(b.solver, t1, dt);
+    double x1, v1, x2, v2;
+    b.block_motion(x1, v1);
+    run_to(b.solver, t2, dt);
+    b.block_motion(x2, v2);
+    const double a = (v2 - v1) / (t2 - t1);
+    const double expected = std::fmax(0.0, g * (std::sin(th) - mu * std::cos(th)));
+    std::printf("F4 incline %.0f deg: acceleration %.4f m/s2 vs %.4f (frictionless %.4f); displacement at %.2f s "
+                "%.3e m\n", deg, a, expected, g * std::sin(th), t2, x2);
+    if (expected > 0) {
+      CHECK(std::fabs(a / expected - 1) < 0.02);
+    } else {
+      // Sticks: the mean acceleration stays below 2 % of the frictionless g sin(theta). What creep there is
+      // comes from the undamped contact bounce: the normal force swings between 0 and 2 m g cos(theta).
+      CHECK(std::fabs(a) < 0.02 * g * std::sin(th));
+    }
+  }
+}
+
+TEST_CASE("Determinism: a fracturing run repeated gives the same bytes", "[fdem][determinism]") {
+  auto run = [] {
+    const FdemTopology topo = build_topology(structured_rectangle(16, 8, 0.0, 0.16, 0.0, 0.08));
+    RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
+    s.prescribe_velocity(nodes_where(topo, [](double, double y) { return y < 1e-9; }), true, true, 0, 0);
+    s.prescribe_velocity(nodes_where(topo, [](double, double y) { return y > 0.08 - 1e-9; }), true, true, 0.5, 2.0);
+    run_to(s, 600 * 0.9 * s.stable_dt(), 0.9 * s.stable_dt());
+    return s;
+  };
+  RockSolver a = run(), b = run();
+  const RockSnapshot sa = a.snapshot(), sb = b.snapshot();
+  const RockEnergies ea = a.energies(), eb = b.energies();
+  std::printf("Determinism: %d joints broken, fracture energy %.6e J/m\n", ea.broken_joints, ea.fracture_dissipated);
+  CHECK(ea.broken_joints > 0);
+  CHECK(std::memcmp(sa.x.data(), sb.x.data(), sa.x.size() * sizeof(double)) == 0);
+  CHECK(std::memcmp(sa.vy.data(), sb.vy.data(), sa.vy.size() * sizeof(double)) == 0);
+  CHECK(std::memcmp(sa.stress.data(), sb.stress.data(), sa.stress.size() * sizeof(double)) == 0);
+  CHECK(std::memcmp(sa.joint_damage.data(), sb.joint_damage.data(), sa.joint_damage.size() * sizeof(double)) == 0);
+  CHECK(std::memcmp(&ea.fracture_dissipated, &eb.fracture_dissipated, sizeof(double)) == 0);
+  CHECK(std::memcmp(&ea.strain, &eb.strain, sizeof(double)) == 0);
+  CHECK(ea.broken_joints == eb.broken_joints);
+}
+
+TEST_CASE("A fixed time step above the stable step is refused with a clear message", "[fdem][errors]") {
+  const FdemTopology topo = build_topology(structured_rectangle(2, 2, 0.0, 0.02, 0.0, 0.02));
+  RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
+  CHECK_THROWS_WITH(s.step(2 * s.stable_dt()), Catch::Contains("stable step"));
+}
