@@ -1,0 +1,47 @@
+//! \file gmsh_mesh.hpp
+//! \brief Triangle meshes from Gmsh: the usual specimen shapes built through the Gmsh API, and .msh files read.
+//!
+//! Every function returns the mesh (counter-clockwise triangles) with its boundary edges grouped by name:
+//! the built shapes name theirs ("left", "right", "bottom", "top", "outer", "hole"); a .msh file's
+//! 1-D physical groups give theirs. Without Gmsh in the build (BLASTSIM_HAVE_GMSH undefined) each function
+//! throws InputError saying so.
+#pragma once
+
+#include "blastsim/fdem/mesh.hpp"
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace blastsim::fdem {
+
+//! A mesh with named boundary-edge groups (each edge a pair of vertex indices).
+struct NamedMesh {
+  TriangleMesh mesh;
+  std::map<std::string, std::vector<std::array<int, 2>>> boundary_groups;
+};
+
+//! True when this build can call Gmsh.
+bool gmsh_available();
+
+//! Rectangle [x0, x1] x [y0, y1], target element size h [m]; groups left, right, bottom, top.
+NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h);
+//! Disc of radius r centred at (cx, cy); group outer.
+NamedMesh gmsh_disc(double cx, double cy, double r, double h);
+//! Disc of radius r with a concentric circular hole of radius r_hole; groups outer, hole.
+NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, double h);
+//! Rectangle with a circular hole (centre (cx, cy), radius r_hole) inside it; groups left, right, bottom,
+//! top, hole.
+NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, double cx, double cy, double r_hole,
+                                   double h);
+//! Reads a Gmsh .msh file (format 4; 3-node triangles, 1-D physical groups name boundary edges). Throws
+//! InputError for a missing or unreadable file, or one with no triangles.
+NamedMesh read_gmsh_file(const std::string& path);
+
+//! Boundary slots (see RockSolver) of the edges in `edges` (vertex pairs), looked up in the topology.
+//! Throws InputError naming the group if an edge is not a boundary edge of the topology.
+std::vector<int> boundary_slots(const FdemTopology& topology, const std::vector<std::array<int, 2>>& edges,
+                                const std::string& group);
+
+}  // namespace blastsim::fdem
