@@ -18,6 +18,7 @@ struct RockArrays {
   const std::uint8_t* constraint;
   const double* v_prescribed;
   double* work;
+  double* support;  // 2 per node: force of the prescribed-velocity support in the last step [N/m]
   const double *inv_f0, *area0, *eta;
   double *stress, *dissipation;
   double* slot_force;
@@ -302,6 +303,8 @@ struct NodeUpdateKernel {
       v.y = r.v_prescribed[2 * n + 1];
     }
     const Vec2 d{0.5 * (r.vx[n] * dt_prev + v.x * dt), 0.5 * (r.vy[n] * dt_prev + v.y * dt)};
+    r.support[2 * n] = support.x;
+    r.support[2 * n + 1] = support.y;
     r.vx[n] = v.x;
     r.vy[n] = v.y;
     r.x[n] += v.x * dt;

@@ -94,6 +94,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   vx_.assign(nodes, 0.0), vy_.assign(nodes, 0.0);
   f_tri_x_.assign(nodes, 0.0), f_tri_y_.assign(nodes, 0.0), f_con_x_.assign(nodes, 0.0), f_con_y_.assign(nodes, 0.0);
   constraint_.assign(nodes, 0), v_prescribed_.assign(2 * nodes, 0.0), work_.assign(4 * nodes, 0.0);
+  support_.assign(2 * nodes, 0.0);
   inv_f0_ = upload(inv_f0), area0_ = upload(area0), eta_ = upload(eta);
   stress_.assign(3 * triangles_, 0.0), dissipation_.assign(2 * triangles_, 0.0);
 
@@ -136,7 +137,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
 detail::RockArrays RockSolver::arrays() {
   return {device_ptr(x_), device_ptr(y_), device_ptr(vx_), device_ptr(vy_), device_ptr(x0_), device_ptr(y0_),
           device_ptr(mass_), device_ptr(f_tri_x_), device_ptr(f_tri_y_), device_ptr(f_con_x_), device_ptr(f_con_y_),
-          device_ptr(constraint_), device_ptr(v_prescribed_), device_ptr(work_), device_ptr(inv_f0_),
+          device_ptr(constraint_), device_ptr(v_prescribed_), device_ptr(work_), device_ptr(support_), device_ptr(inv_f0_),
           device_ptr(area0_), device_ptr(eta_), device_ptr(stress_), device_ptr(dissipation_),
           device_ptr(slot_force_), device_ptr(slot_neighbour_), device_ptr(slot_joint_), device_ptr(edge_exposed_),
           device_ptr(edge_pressure_), device_ptr(joint_nodes_), device_ptr(joint_strength_),
@@ -331,6 +332,13 @@ RockEnergies RockSolver::energies() {
     return r.joint_broken[j] ? r.joint_strength[8 * j + 7] : 0.0;
   });
   return e;
+}
+
+std::array<double, 2> RockSolver::support_reaction(const std::vector<int>& nodes) const {
+  const std::vector<double> f = to_host(support_);
+  std::array<double, 2> sum{0.0, 0.0};
+  for (int n : nodes) sum[0] += f[2 * n], sum[1] += f[2 * n + 1];
+  return sum;
 }
 
 double RockSolver::contact_force_norm() {

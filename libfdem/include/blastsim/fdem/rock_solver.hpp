@@ -100,6 +100,8 @@ class RockSolver {
   // --- diagnostics and output (host copies; each costs a device sync) ---
   RockEnergies energies();
   RockSnapshot snapshot() const;
+  //! Total force [N/m] that the prescribed-velocity supports exerted on `nodes` in the last step.
+  std::array<double, 2> support_reaction(const std::vector<int>& nodes) const;
   //! Sum over nodes of the contact force magnitude [N/m] of the last step (0: nothing touches).
   double contact_force_norm();
   double time() const { return time_; }
@@ -132,6 +134,7 @@ class RockSolver {
   DeviceVector<std::uint8_t> constraint_;                      // bit 0: x prescribed, bit 1: y prescribed
   DeviceVector<double> v_prescribed_;                           // 2 per node
   DeviceVector<double> work_;                                   // 4 per node: external, joint, contact, support
+  DeviceVector<double> support_;                                // 2 per node: support force of the last step
   // triangles
   DeviceVector<double> inv_f0_;      // 4 per triangle
   DeviceVector<double> area0_, eta_;  // [m2], damping coefficient [Pa s]
