@@ -152,10 +152,14 @@ CaseConfig read_case(const toml::table& input) {
   return c;
 }
 
-CaseConfig load_case(const std::string& input_path, const std::vector<std::string>& overrides) {
+toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides) {
   toml::table input = parse_input_file(input_path);
   for (const std::string& o : overrides) apply_override(input, o);
-  return read_case(input);
+  return input;
+}
+
+CaseConfig load_case(const std::string& input_path, const std::vector<std::string>& overrides) {
+  return read_case(load_input(input_path, overrides));
 }
 
 }  // namespace blastsim::app

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "case_config.hpp"
+#include "rock_config.hpp"
 #include "input_reader.hpp"
 
 #include <string>
@@ -16,5 +17,15 @@ CaseConfig load_case(const std::string& input_path, const std::vector<std::strin
 
 //! Same from an already parsed table (tests).
 CaseConfig read_case(const toml::table& input);
+
+//! Parses a case file and applies the overrides (the first half of load_case()).
+toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides);
+
+//! True when the parsed input describes a rock-only case ([rock] present, no [gas]). Throws InputError for
+//! a case with both: the coupled gas-rock case is not available yet.
+bool is_rock_case(const toml::table& input);
+
+//! Reads and validates a rock-only case; InputError names the key, the value and what is allowed.
+RockCaseConfig read_rock_case(const toml::table& input);
 
 }  // namespace blastsim::app

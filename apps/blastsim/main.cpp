@@ -4,6 +4,7 @@
 #include "blastsim/core/macros.hpp"
 #include "case_input.hpp"
 #include "gas_run.hpp"
+#include "rock_run.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -11,7 +12,7 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
-  CLI::App cli{"blastsim: 2-D rock-blasting simulator (CIP gas; FDEM rock and coupling to come)"};
+  CLI::App cli{"blastsim: 2-D rock-blasting simulator (CIP gas or FDEM rock cases; the coupling comes next)"};
   std::string input;
   std::vector<std::string> overrides;
   bool quiet = false, check_only = false;
@@ -23,13 +24,25 @@ int main(int argc, char** argv) {
 
   using namespace blastsim;
   try {
-    const app::CaseConfig config = app::load_case(input, overrides);
-    std::cout << fmt::format("blastsim {}, backend {}\nresolved configuration of {}:\n", BLASTSIM_VERSION,
-                             backend_name(), input);
-    for (const std::string& line : config.echo) std::cout << "  " << line << "\n";
-    if (check_only) return 0;
-    app::run_gas_case(config, std::cout, app::RunOptions{quiet});
-    std::cout << "done; results in " << config.output_directory << "\n";
+    const toml::table table = app::load_input(input, overrides);
+    auto echo = [&](const std::vector<std::string>& lines) {
+      std::cout << fmt::format("blastsim {}, backend {}\nresolved configuration of {}:\n", BLASTSIM_VERSION,
+                               backend_name(), input);
+      for (const std::string& line : lines) std::cout << "  " << line << "\n";
+    };
+    if (app::is_rock_case(table)) {
+      const app::RockCaseConfig config = app::read_rock_case(table);
+      echo(config.echo);
+      if (check_only) return 0;
+      app::run_rock_case(config, std::cout, app::RunOptions{quiet});
+      std::cout << "done; results in " << config.output_directory << "\n";
+    } else {
+      const app::CaseConfig config = app::read_case(table);
+      echo(config.echo);
+      if (check_only) return 0;
+      app::run_gas_case(config, std::cout, app::RunOptions{quiet});
+      std::cout << "done; results in " << config.output_directory << "\n";
+    }
   } catch (const InputError& e) {
     std::cerr << "input error: " << e.what() << "\n";
     return 2;

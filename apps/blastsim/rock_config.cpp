@@ -1,0 +1,123 @@
+//! \file rock_config.cpp
+//! \brief Reads a rock-only case from TOML into a RockCaseConfig; docs/input.md documents every key read here.
+#include "blastsim/core/error.hpp"
+#include "case_input.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace blastsim::app {
+
+bool is_rock_case(const toml::table& input) {
+  const bool rock = input.contains("rock"), gas = input.contains("gas");
+  if (rock && gas)
+    throw InputError("the case has both [gas] and [rock]: coupled gas-rock cases are not available yet "
+                     "(give one of the two)");
+  return rock;
+}
+
+namespace {
+
+fdem::RockMaterial read_material(TableReader& r) {
+  const std::string preset = r.text("preset", {"paper_table2", "none"}, std::string("paper_table2"));
+  fdem::RockMaterial m = preset == "paper_table2" ? fdem::RockMaterial::paper_table2() : fdem::RockMaterial{};
+  auto value = [&](const char* key, const char* unit, double preset_value, Range range) {
+    return preset == "none" ? r.number(key, unit, range) : r.number(key, unit, range, preset_value);
+  };
+  m.density = value("density", "kg/m3", m.density, Range::positive());
+  m.youngs_modulus = value("youngs_modulus", "Pa", m.youngs_modulus, Range::positive());
+  m.poisson_ratio = value("poisson_ratio", "", m.poisson_ratio, Range{0.0, 0.5, false, true});
+  m.tensile_strength = value("tensile_strength", "Pa", m.tensile_strength, Range::positive());
+  m.cohesion = value("cohesion", "Pa", m.cohesion, Range::positive());
+  m.friction_angle =
+      value("friction_angle", "deg", m.friction_angle * 180 / M_PI, Range{0.0, 90.0, false, true}) * M_PI / 180;
+  m.fracture_energy_mode1 = value("fracture_energy_mode1", "J/m2", m.fracture_energy_mode1, Range::positive());
+  m.fracture_energy_mode2 = value("fracture_energy_mode2", "J/m2", m.fracture_energy_mode2, Range::positive());
+  m.contact_friction = value("contact_friction", "", m.contact_friction, Range::non_negative());
+  return m;
+}
+
+RockMeshSpec read_mesh(TableReader& t) {
+  RockMeshSpec s;
+  s.shape = t.text("shape", {"rectangle", "disc", "disc_with_hole", "rectangle_with_hole", "file"});
+  if (s.shape == "file") {
+    s.file = t.text("file", {});
+    return s;
+  }
+  s.element_size = t.number("element_size", "m", Range::positive());
+  if (s.shape == "rectangle" || s.shape == "rectangle_with_hole") {
+    s.min = t.pair("min", "m");
+    s.max = t.pair("max", "m");
+    if (!(s.max[0] > s.min[0]) || !(s.max[1] > s.min[1]))
+      throw InputError(fmt::format("{}: max must exceed min in x and y", t.path()));
+  }
+  if (s.shape == "disc" || s.shape == "disc_with_hole") {
+    s.center = t.pair("center", "m", std::array<double, 2>{0.0, 0.0});
+    s.radius = t.number("radius", "m", Range::positive());
+  }
+  if (s.shape == "disc_with_hole" || s.shape == "rectangle_with_hole") {
+    if (s.shape == "rectangle_with_hole") s.center = t.pair("center", "m");
+    s.hole_radius = t.number("hole_radius", "m", Range::positive());
+  }
+  return s;
+}
+
+}  // namespace
+
+RockCaseConfig read_rock_case(const toml::table& input) {
+  RockCaseConfig c;
+  TableReader root(input, "", c.echo);
+  TableReader rock = root.table("rock", true);
+  c.material = read_material(rock);
+  c.options.joint_penalty_factor = rock.number("joint_penalty_factor", "", Range::positive(), 10.0);
+  c.options.contact_penalty_factor = rock.number("contact_penalty_factor", "", Range::positive(), 10.0);
+  c.options.damping_ratio = rock.number("damping_ratio", "", Range{0.0, 1.0, false, true}, 0.0);
+  c.options.contact = rock.boolean("contact", true);
+  c.options.gravity = rock.pair("gravity", "m/s2", std::array<double, 2>{0.0, 0.0});
+  c.initial_velocity = rock.pair("initial_velocity", "m/s", std::array<double, 2>{0.0, 0.0});
+  c.pressure_ramp_time = rock.number("pressure_ramp_time", "s", Range::non_negative(), 0.0);
+  TableReader mesh = rock.table("mesh", true);
+  c.mesh = read_mesh(mesh);
+  mesh.finish();
+  for (TableReader& v : rock.table_array("velocity")) {
+    VelocityLoad l;
+    l.min = v.pair("min", "m");
+    l.max = v.pair("max", "m");
+    l.velocity = v.pair("velocity", "m/s");
+    const std::string comp = v.text("components", {"x", "y", "xy"}, std::string("xy"));
+    l.along_x = comp != "y";
+    l.along_y = comp != "x";
+    v.finish();
+    c.velocities.push_back(l);
+  }
+  for (TableReader& p : rock.table_array("pressure")) {
+    PressureLoad l;
+    l.boundary = p.text("boundary", {});
+    l.pressure = p.number("pressure", "Pa", Range::any());
+    p.finish();
+    c.pressures.push_back(l);
+  }
+  rock.finish();
+
+  TableReader time = root.table("time", true);
+  c.end_time = time.number("end", "s", Range::positive());
+  c.fixed_dt = time.optional_number("dt", "s", Range::positive());
+  c.step_fraction = time.number("step_fraction", "", Range::half_open(0.0, 1.0), 0.9);
+  time.finish();
+
+  TableReader out = root.table("output");
+  c.output_directory = out.text("directory", {}, std::string("output"));
+  if (c.output_directory.empty()) throw InputError("output.directory must not be empty");
+  c.output_interval = out.number("interval", "s", Range::non_negative(), 0.0);
+  c.vtk = out.boolean("vtk", true);
+  c.progress_interval = out.number("progress_interval", "s (wall)", Range::non_negative(), 2.0);
+  c.monitor_interval = out.integer("monitor_interval", "steps", 1, 10);
+  out.finish();
+  root.finish();
+  c.material.validate();
+  c.options.validate();
+  return c;
+}
+
+}  // namespace blastsim::app

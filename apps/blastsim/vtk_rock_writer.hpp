@@ -1,0 +1,20 @@
+//! \file vtk_rock_writer.hpp
+//! \brief Rock snapshots as VTK unstructured grids (.vtu): the triangles with their fields, and the joints as crack lines.
+#pragma once
+
+#include "blastsim/fdem/rock_types.hpp"
+
+#include <string>
+
+namespace blastsim::app {
+
+//! Writes the triangles (points = FDEM nodes at their current positions; point data displacement and
+//! velocity; cell data stress [sxx, syy, sxy], principal_max, principal_min (the paper's "PS3")) to `path`,
+//! atomically. Throws std::runtime_error without VTK.
+void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& snapshot);
+
+//! Writes every joint as a line between the mid-points of its two faces' ends, with cell data damage and
+//! broken (1: a crack), to `path`, atomically.
+void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& snapshot);
+
+}  // namespace blastsim::app

@@ -1,0 +1,100 @@
+//! \file test_rock_driver.cpp
+//! \brief Driver on rock-only cases: the bundled Brazilian disc runs and writes .vtu that VTK reads back; bad rock input.
+#include "blastsim/core/error.hpp"
+#include "case_input.hpp"
+#include "catch.hpp"
+#include "rock_run.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#if defined(BLASTSIM_HAVE_VTK)
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#endif
+
+namespace fs = std::filesystem;
+using namespace blastsim;
+
+namespace {
+const std::string example = std::string(BLASTSIM_EXAMPLES_DIR) + "/brazilian_disc/brazilian_disc.toml";
+
+fs::path fresh(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("blastsim_test_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+std::string first_line(const fs::path& p) {
+  std::ifstream in(p);
+  std::string l;
+  std::getline(in, l);
+  return l;
+}
+}  // namespace
+
+#if defined(BLASTSIM_HAVE_VTK)
+TEST_CASE("Driver runs the bundled Brazilian disc (coarse) and its .vtu read back", "[app][rock][vtk]") {
+  const fs::path out = fresh("brazilian");
+  // The bundled file with a coarser mesh, run past the peak load (about 0.5 ms).
+  const app::RockCaseConfig c = app::read_rock_case(app::load_input(
+      example, {"rock.mesh.element_size=0.008", "time.end=7e-4", "output.interval=3.5e-4",
+                "output.directory=\"" + out.string() + "\""}));
+  std::ostringstream log;
+  app::run_rock_case(c, log);
+  INFO(log.str());
+  CHECK(first_line(out / "rock_series.csv").rfind("step,time_s,kinetic_J_per_m,strain_J_per_m", 0) == 0);
+  CHECK(fs::exists(out / "rock.pvd"));
+  CHECK(fs::exists(out / "joints.pvd"));
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName((out / "rock_000002.vtu").string().c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  REQUIRE(grid->GetNumberOfCells() > 100);
+  CHECK(grid->GetNumberOfPoints() == 3 * grid->GetNumberOfCells());  // FDEM: three own nodes per triangle
+  REQUIRE(grid->GetCellData()->GetArray("stress") != nullptr);
+  CHECK(grid->GetCellData()->GetArray("stress")->GetNumberOfComponents() == 3);
+  vtkDataArray* ps3 = grid->GetCellData()->GetArray("principal_min");
+  REQUIRE(ps3 != nullptr);
+  double range[2];
+  ps3->GetRange(range);
+  CHECK(range[0] < -1e6);  // the loading arcs compress the disc: MPa-level compressive principal stress
+  REQUIRE(grid->GetPointData()->GetArray("displacement") != nullptr);
+  vtkNew<vtkXMLUnstructuredGridReader> joints;
+  joints->SetFileName((out / "joints_000002.vtu").string().c_str());
+  joints->Update();
+  vtkDataArray* broken = joints->GetOutput()->GetCellData()->GetArray("broken");
+  REQUIRE(broken != nullptr);
+  broken->GetRange(range);
+  CHECK(range[1] == 1.0);  // the disc has split: broken joints drawn as cracks
+  CHECK(log.str().find("joints broken") != std::string::npos);
+}
+#endif
+
+TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][bad]") {
+  auto read = [](const std::vector<std::string>& overrides) {
+    return app::read_rock_case(app::load_input(example, overrides));
+  };
+  CHECK_THROWS_WITH(read({"rock.youngs_modulus=-1.0"}), Catch::Contains("rock.youngs_modulus"));
+  CHECK_THROWS_WITH(read({"rock.mesh.shape=\"hexagon\""}), Catch::Contains("rock.mesh.shape"));
+  CHECK_THROWS_WITH(read({"rock.mesh.elements=3"}), Catch::Contains("rock.mesh.elements"));
+  CHECK_THROWS_WITH(read({"rock.damping_ratio=1.5"}), Catch::Contains("rock.damping_ratio"));
+  CHECK_THROWS_WITH(read({"rock.velocity.0.components=\"z\""}), Catch::Contains("rock.velocity.0.components"));
+  // A case with both gas and rock is refused (coupling comes with the coupling issue).
+  toml::table both = app::load_input(example, {});
+  both.insert("gas", toml::table{});
+  CHECK_THROWS_WITH(app::is_rock_case(both), Catch::Contains("coupled"));
+  // Run-time checks: unknown boundary group, a fixed dt above the stable step.
+  std::ostringstream log;
+  app::RockCaseConfig c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh("bad").string() + "\""});
+  c.pressures.push_back({"nowhere", 1e6});
+  CHECK_THROWS_WITH(app::run_rock_case(c, log), Catch::Contains("no such boundary group"));
+  c.pressures.clear();
+  c.fixed_dt = 1e-3;
+  CHECK_THROWS_WITH(app::run_rock_case(c, log), Catch::Contains("time.dt"));
+}
