@@ -220,20 +220,11 @@ void RockSolver::step(double dt) {
     throw InputError(os.str());
   }
   if (options_.contact && 2 * travel_since_build_ > buffer_) rebuild_contact_grid();
+  triangle_forces(dt);
+  joint_forces();
+  contact_forces(dt);
+  update_nodes(dt);
   const detail::RockArrays r = arrays();
-  // 1. Triangles (Munjiza 2004 ch. 2), 2. joints (ch. 7), 3. contact (ch. 2, distributed potential).
-  for_each_index("fdem.triangles", triangles_,
-                 detail::TriangleForceKernel{r, material_.lame_lambda(), material_.shear_modulus(), dt});
-  if (joints_ > 0) for_each_index("fdem.joints", joints_, detail::JointForceKernel{r});
-  if (options_.contact) {
-    const double mu_c = material_.contact_friction;
-    for_each_index("fdem.contact", triangles_,
-                   detail::ContactForceKernel{r, options_.contact_penalty_factor * material_.youngs_modulus, mu_c, dt});
-  }
-  // 4. Nodes: gather and integrate (symplectic Euler).
-  for_each_index("fdem.nodes", node_count(),
-                 detail::NodeUpdateKernel{r, options_.gravity[0], options_.gravity[1], pressure_scale_, dt, dt_prev_});
-  dt_prev_ = dt;
   time_ += dt;
   ++steps_;
   // Largest speed (infinite if any is not finite): drives the contact rebuild and catches instability.
@@ -252,6 +243,32 @@ void RockSolver::step(double dt) {
                            std::to_string(bad / 3));
   }
   travel_since_build_ += v_max * dt;
+}
+
+// Munjiza 2004 ch. 2: constant-strain triangles.
+void RockSolver::triangle_forces(double dt) {
+  for_each_index("fdem.triangles", triangles_,
+                 detail::TriangleForceKernel{arrays(), material_.lame_lambda(), material_.shear_modulus(), dt});
+}
+
+// Munjiza 2004 ch. 7: cohesive joints.
+void RockSolver::joint_forces() {
+  if (joints_ > 0) for_each_index("fdem.joints", joints_, detail::JointForceKernel{arrays()});
+}
+
+// Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction.
+void RockSolver::contact_forces(double dt) {
+  if (!options_.contact) return;
+  for_each_index("fdem.contact", triangles_,
+                 detail::ContactForceKernel{arrays(), options_.contact_penalty_factor * material_.youngs_modulus,
+                                            material_.contact_friction, dt});
+}
+
+// Symplectic Euler (fdem.md): gather the node's forces, integrate.
+void RockSolver::update_nodes(double dt) {
+  for_each_index("fdem.nodes", node_count(),
+                 detail::NodeUpdateKernel{arrays(), options_.gravity[0], options_.gravity[1], pressure_scale_, dt, dt_prev_});
+  dt_prev_ = dt;
 }
 
 void RockSolver::prescribe_velocity(const std::vector<int>& nodes, bool along_x, bool along_y, double vx, double vy) {

@@ -75,6 +75,13 @@ T reduce_sum(const char* label, index_t n, T init, F f) {
                                   thrust::plus<T>());
 }
 
+//! Waits until every kernel launched so far has finished (for timings; the step loop never needs it).
+inline void synchronize() {
+#if defined(__CUDACC__)
+  cudaDeviceSynchronize();
+#endif
+}
+
 //! Owning array in the backend's memory. Kernels never index it; they get a raw pointer or a view.
 template <class T>
 using DeviceVector = thrust::device_vector<T>;

@@ -44,7 +44,14 @@ class RockSolver {
   double stable_dt() const { return stable_dt_; }
 
   //! Advances by dt [s]. Throws InputError if dt > stable_dt(), InstabilityError on a non-finite state.
+  //! One step = triangle_forces(), joint_forces(), contact_forces(), update_nodes(), then the speed check.
   void step(double dt);
+
+  // --- the phases of step(), public for benchmarks and profiling (call them in this order) ---
+  void triangle_forces(double dt);  //!< internal forces, stresses, damping (one thread per triangle)
+  void joint_forces();              //!< cohesive joints, damage, breakage (one thread per joint)
+  void contact_forces(double dt);   //!< contact and friction (one thread per triangle); no-op without contact
+  void update_nodes(double dt);     //!< gather and integrate (one thread per node)
 
   // --- loads and constraints (host calls between steps) ---
   //! Prescribes the velocity of `nodes` [m/s] along x and/or y (fixed nodes: zero velocity).
