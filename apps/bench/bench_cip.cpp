@@ -4,9 +4,8 @@
 //! Floor model (docs/performance.md): a step must at least read and write the 12 double arrays of the
 //! state (rho, e, u, v, each with d/dx and d/dy): 24 x 8 = 192 bytes per cell. "floor GB/s" is those bytes
 //! divided by the step time; its ratio to the measured copy bandwidth is how close the step is to the floor.
+#include "bench_common.hpp"
 #include "blastsim/cip/gas_solver.hpp"
-
-#include <thrust/copy.h>
 
 #include <chrono>
 #include <cstdio>
@@ -15,23 +14,6 @@
 #include <string>
 #include <vector>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
-//! Device-to-device copy bandwidth [B/s] (bytes read + written) of the backend, the reference for the floor.
-double measure_copy_bandwidth() {
-  const size_t n = size_t(1) << 25;  // 32 Mi doubles = 256 MiB per array
-  blastsim::DeviceVector<double> a(n, 1.0), b(n, 0.0);
-  thrust::copy(thrust::device, a.begin(), a.end(), b.begin());  // warm-up
-  const int reps = 5;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int r = 0; r < reps; ++r) thrust::copy(thrust::device, (r % 2 ? b : a).begin(), (r % 2 ? b : a).end(),
-                                              (r % 2 ? a : b).begin());
-  (void)blastsim::reduce_max("sync", 1, 0.0, [] BLAST_HD(blastsim::index_t) { return 0.0; });
-  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return 2.0 * sizeof(double) * n * reps / sec;
-}
 
 int main(int argc, char** argv) {
   using namespace blastsim;
@@ -41,9 +23,7 @@ int main(int argc, char** argv) {
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--sizes=", 0) == 0) {
-      sizes.clear();
-      std::stringstream ss(arg.substr(8));
-      for (std::string s; std::getline(ss, s, ',');) sizes.push_back(std::stoi(s));
+      sizes = bench::parse_int_list(arg.substr(8));
     } else if (arg == "--transport=conservative") {
       transports = {cip::Transport::conservative};
     } else if (arg == "--transport=paper") {
@@ -55,13 +35,10 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  int threads = 1;
-#if defined(_OPENMP)
-  threads = omp_get_max_threads();
-#endif
+  const int threads = bench::thread_count();
   const double floor_bytes_per_cell = 24 * sizeof(double);
   std::printf("backend %s, threads %d, %d timed steps after 3 warm-up steps\n", backend_name(), threads, steps);
-  const double bandwidth = measure_copy_bandwidth();
+  const double bandwidth = bench::copy_bandwidth();
   std::printf("measured copy bandwidth (read + write): %.2f GB/s\n", bandwidth / 1e9);
   std::printf("%13s %10s %12s %16s %14s %18s\n", "transport", "cells", "ms/step", "cell-updates/s", "floor GB/s",
               "floor/bandwidth");

@@ -4,6 +4,7 @@
 //! Case: an intact square block of n x n squares (2 n^2 triangles, about 3 n^2 joints) of the paper's rock,
 //! set vibrating by a random initial velocity so that every kernel does real work. Floor model
 //! (docs/performance.md): bytes each phase must move at least, over the measured copy bandwidth.
+#include "bench_common.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 
 #include <chrono>
@@ -13,24 +14,9 @@
 #include <string>
 #include <vector>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
 
 namespace {
 using Clock = std::chrono::steady_clock;
-
-double copy_bandwidth() {
-  const size_t n = size_t(1) << 25;
-  blastsim::DeviceVector<double> a(n, 1.0), b(n, 0.0);
-  thrust::copy(thrust::device, a.begin(), a.end(), b.begin());
-  blastsim::synchronize();
-  const int reps = 5;
-  const auto t0 = Clock::now();
-  for (int r = 0; r < reps; ++r) thrust::copy(thrust::device, a.begin(), a.end(), b.begin());
-  blastsim::synchronize();
-  return 2.0 * sizeof(double) * n * reps / std::chrono::duration<double>(Clock::now() - t0).count();
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -40,9 +26,7 @@ int main(int argc, char** argv) {
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--sizes=", 0) == 0) {
-      sizes.clear();
-      std::stringstream ss(arg.substr(8));
-      for (std::string s; std::getline(ss, s, ',');) sizes.push_back(std::stoi(s));
+      sizes = bench::parse_int_list(arg.substr(8));
     } else if (arg.rfind("--steps=", 0) == 0) {
       steps = std::stoi(arg.substr(8));
     } else {
@@ -50,11 +34,8 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  int threads = 1;
-#if defined(_OPENMP)
-  threads = omp_get_max_threads();
-#endif
-  const double bw = copy_bandwidth();
+  const int threads = bench::thread_count();
+  const double bw = bench::copy_bandwidth();
   std::printf("backend %s, threads %d, %d timed steps; copy bandwidth (read + write) %.1f GB/s\n", backend_name(),
               threads, steps, bw / 1e9);
   // Floor bytes per item (each array read or written once): triangle 6 positions + 6 velocities + 4 inv F0

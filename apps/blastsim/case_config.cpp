@@ -112,12 +112,12 @@ CaseConfig read_case(const toml::table& input) {
   time.finish();
 
   TableReader out = root.table("output");
-  c.output_directory = out.text("directory", {}, std::string("output"));
-  if (c.output_directory.empty()) throw InputError("output.directory must not be empty");
-  c.output_interval = out.number("interval", "s", Range::non_negative(), 0.0);
-  c.vtk = out.boolean("vtk", true);
-  c.progress_interval = out.number("progress_interval", "s (wall)", Range::non_negative(), 2.0);
-  c.monitor_interval = out.integer("monitor_interval", "steps", 1, 1);
+  const OutputBasics basics = read_output_basics(out, 1);
+  c.output_directory = basics.directory;
+  c.output_interval = basics.interval;
+  c.vtk = basics.vtk;
+  c.progress_interval = basics.progress_interval;
+  c.monitor_interval = basics.monitor_interval;
   c.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
   out.finish();
 
@@ -150,6 +150,17 @@ CaseConfig read_case(const toml::table& input) {
   for (const PointProbe& q : c.point_probes) check_name("point", q.name);
   root.finish();
   return c;
+}
+
+OutputBasics read_output_basics(TableReader& out, long long monitor_default) {
+  OutputBasics b;
+  b.directory = out.text("directory", {}, std::string("output"));
+  if (b.directory.empty()) throw InputError("output.directory must not be empty");
+  b.interval = out.number("interval", "s", Range::non_negative(), 0.0);
+  b.vtk = out.boolean("vtk", true);
+  b.progress_interval = out.number("progress_interval", "s (wall)", Range::non_negative(), 2.0);
+  b.monitor_interval = out.integer("monitor_interval", "steps", 1, monitor_default);
+  return b;
 }
 
 toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides) {

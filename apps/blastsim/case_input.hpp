@@ -18,6 +18,17 @@ CaseConfig load_case(const std::string& input_path, const std::vector<std::strin
 //! Same from an already parsed table (tests).
 CaseConfig read_case(const toml::table& input);
 
+//! Output keys shared by gas and rock cases ([output] directory, interval, vtk, progress_interval,
+//! monitor_interval); the caller reads its own keys and calls finish().
+struct OutputBasics {
+  std::string directory;
+  double interval = 0;
+  bool vtk = true;
+  double progress_interval = 2;
+  long long monitor_interval = 1;
+};
+OutputBasics read_output_basics(TableReader& out, long long monitor_default);
+
 //! Parses a case file and applies the overrides (the first half of load_case()).
 toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides);
 

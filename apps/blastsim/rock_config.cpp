@@ -107,12 +107,12 @@ RockCaseConfig read_rock_case(const toml::table& input) {
   time.finish();
 
   TableReader out = root.table("output");
-  c.output_directory = out.text("directory", {}, std::string("output"));
-  if (c.output_directory.empty()) throw InputError("output.directory must not be empty");
-  c.output_interval = out.number("interval", "s", Range::non_negative(), 0.0);
-  c.vtk = out.boolean("vtk", true);
-  c.progress_interval = out.number("progress_interval", "s (wall)", Range::non_negative(), 2.0);
-  c.monitor_interval = out.integer("monitor_interval", "steps", 1, 10);
+  const OutputBasics basics = read_output_basics(out, 10);
+  c.output_directory = basics.directory;
+  c.output_interval = basics.interval;
+  c.vtk = basics.vtk;
+  c.progress_interval = basics.progress_interval;
+  c.monitor_interval = basics.monitor_interval;
   out.finish();
   root.finish();
   c.material.validate();

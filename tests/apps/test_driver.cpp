@@ -4,6 +4,7 @@
 #include "blastsim/core/error.hpp"
 #include "case_input.hpp"
 #include "catch.hpp"
+#include "temp_files.hpp"
 #include "gas_run.hpp"
 
 #include <cstdio>
@@ -22,14 +23,11 @@
 
 namespace fs = std::filesystem;
 using namespace blastsim;
+using blastsim::testing::fresh_dir;
+using blastsim::testing::first_line;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("blastsim_test_" + name);
-  fs::remove_all(d);
-  return d;
-}
 
 std::string case_text(const fs::path& out, bool vtk) {
   std::ostringstream s;
@@ -44,12 +42,6 @@ std::string case_text(const fs::path& out, bool vtk) {
   return s.str();
 }
 
-std::string first_line(const fs::path& p) {
-  std::ifstream in(p);
-  std::string l;
-  std::getline(in, l);
-  return l;
-}
 
 }  // namespace
 

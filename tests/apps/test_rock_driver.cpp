@@ -3,6 +3,7 @@
 #include "blastsim/core/error.hpp"
 #include "case_input.hpp"
 #include "catch.hpp"
+#include "temp_files.hpp"
 #include "rock_run.hpp"
 
 #include <filesystem>
@@ -20,27 +21,18 @@
 
 namespace fs = std::filesystem;
 using namespace blastsim;
+using blastsim::testing::fresh_dir;
+using blastsim::testing::first_line;
 
 namespace {
 const std::string example = std::string(BLASTSIM_EXAMPLES_DIR) + "/brazilian_disc/brazilian_disc.toml";
 
-fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("blastsim_test_" + name);
-  fs::remove_all(d);
-  return d;
-}
 
-std::string first_line(const fs::path& p) {
-  std::ifstream in(p);
-  std::string l;
-  std::getline(in, l);
-  return l;
-}
 }  // namespace
 
 #if defined(BLASTSIM_HAVE_VTK)
 TEST_CASE("Driver runs the bundled Brazilian disc (coarse) and its .vtu read back", "[app][rock][vtk]") {
-  const fs::path out = fresh("brazilian");
+  const fs::path out = fresh_dir("brazilian");
   // The bundled file with a coarser mesh, run past the peak load (about 0.5 ms).
   const app::RockCaseConfig c = app::read_rock_case(app::load_input(
       example, {"rock.mesh.element_size=0.008", "time.end=7e-4", "output.interval=3.5e-4",
@@ -91,7 +83,7 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   CHECK_THROWS_WITH(app::is_rock_case(both), Catch::Contains("coupled"));
   // Run-time checks: unknown boundary group, a fixed dt above the stable step.
   std::ostringstream log;
-  app::RockCaseConfig c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh("bad").string() + "\""});
+  app::RockCaseConfig c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh_dir("bad").string() + "\""});
   c.pressures.push_back({"nowhere", 1e6});
   CHECK_THROWS_WITH(app::run_rock_case(c, log), Catch::Contains("no such boundary group"));
   c.pressures.clear();

@@ -13,6 +13,14 @@ using namespace blastsim::fdem::testing;
 
 namespace {
 //! Smooth load ramp 0 -> 1 over [0, T] (half cosine): quasi-static loading with little dynamic overshoot.
+//! Options of the slow-loading strength tests: light damping, no contact (the peak precedes separation).
+RockOptions strength_test_options() {
+  RockOptions o;
+  o.damping_ratio = 0.1;
+  o.contact = false;
+  return o;
+}
+
 double ramp(double t, double T) { return t >= T ? 1.0 : 0.5 * (1.0 - std::cos(M_PI * t / T)); }
 
 //! Centroid and polar stresses (sigma_r, sigma_theta) of triangle t from a snapshot (current positions).
@@ -84,10 +92,7 @@ TEST_CASE("F6: Brazilian disc: tensile strength from the peak load, crack along 
   const NamedMesh m = gmsh_disc(0, 0, R, h);
   const FdemTopology topo = build_topology(m.mesh);
   const RockMaterial rock = RockMaterial::paper_table2();
-  RockOptions opt;
-  opt.damping_ratio = 0.1;
-  opt.contact = false;
-  RockSolver s(topo, rock, opt);
+  RockSolver s(topo, rock, strength_test_options());
   // Loading arcs: the boundary nodes within 0.12 R of the poles move towards the centre (x free).
   auto on_arc = [&](double x, double y, double sign) {
     return sign * y > 0.9 * R && std::fabs(x) < 0.12 * R && std::hypot(x, y) > R - 1e-9;
@@ -131,10 +136,7 @@ TEST_CASE("F8: uniaxial compression strength near 2 c cos(phi) / (1 - sin(phi)) 
   const NamedMesh m = gmsh_rectangle(0, 0, W, H, h);
   const FdemTopology topo = build_topology(m.mesh);
   const RockMaterial rock = RockMaterial::paper_table2();
-  RockOptions opt;
-  opt.damping_ratio = 0.1;
-  opt.contact = false;
-  RockSolver s(topo, rock, opt);
+  RockSolver s(topo, rock, strength_test_options());
   const auto top = nodes_where(topo, [&](double, double y) { return y > H - 1e-9; });
   const auto bottom = nodes_where(topo, [&](double, double y) { return y < 1e-9; });
   s.prescribe_velocity(top, false, true, 0, -v);  // frictionless platens
