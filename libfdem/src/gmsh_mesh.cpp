@@ -175,11 +175,20 @@ NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h) {
   });
 }
 
-NamedMesh gmsh_disc(double cx, double cy, double r, double h) {
+NamedMesh gmsh_disc(double cx, double cy, double r, double h, const std::vector<Segment>& embedded) {
   require_size(h, "disc mesh");
   if (!(r > 0)) throw InputError("disc mesh: radius " + std::to_string(r) + " m must be > 0");
   return guarded("disc mesh", [&] {
-    gmsh::model::occ::addDisk(cx, cy, 0, r, r);
+    const int disc = gmsh::model::occ::addDisk(cx, cy, 0, r, r);
+    if (!embedded.empty()) {  // split the disc along the segments: the two sides' meshes share its nodes
+      gmsh::vectorpair tools, out;
+      std::vector<gmsh::vectorpair> map;
+      for (const Segment& g : embedded) {
+        const int p0 = gmsh::model::occ::addPoint(g.a[0], g.a[1], 0), p1 = gmsh::model::occ::addPoint(g.b[0], g.b[1], 0);
+        tools.push_back({1, gmsh::model::occ::addLine(p0, p1)});
+      }
+      gmsh::model::occ::fragment({{2, disc}}, tools, out, map);
+    }
     return mesh_shape(h, [](double, double, double, double) { return std::string("outer"); }, "disc mesh");
   });
 }
@@ -237,7 +246,7 @@ namespace {
 }  // namespace
 
 NamedMesh gmsh_rectangle(double, double, double, double, double) { no_gmsh("rectangle mesh"); }
-NamedMesh gmsh_disc(double, double, double, double) { no_gmsh("disc mesh"); }
+NamedMesh gmsh_disc(double, double, double, double, const std::vector<Segment>&) { no_gmsh("disc mesh"); }
 NamedMesh gmsh_disc_with_hole(double, double, double, double, double) { no_gmsh("disc-with-hole mesh"); }
 NamedMesh gmsh_rectangle_with_hole(double, double, double, double, double, double, double, double) {
   no_gmsh("rectangle-with-hole mesh");

@@ -65,6 +65,17 @@ TEST_CASE("Gmsh disc with a hole: area and hole perimeter converge to the circle
   CHECK_THAT(group_length(m, "outer"), WithinRel(2 * M_PI * R, 0.01));
   const NamedMesh d = gmsh_disc(0.0, 0.0, R, h);
   CHECK_THAT(mesh_area(d.mesh), WithinRel(M_PI * R * R, 0.01));
+  // A chord embedded along the y axis: a row of joints covers it, and it is not a boundary.
+  const NamedMesh c = gmsh_disc(0.0, 0.0, R, h, {{{0.0, -R}, {0.0, R}}});
+  const FdemTopology topo = build_topology(c.mesh);
+  double on_chord = 0;
+  for (const Joint& j : topo.joints) {
+    const auto& p = topo.node_positions[j.a0];
+    const auto& q = topo.node_positions[j.a1];
+    if (std::fabs(p[0]) < 1e-12 && std::fabs(q[0]) < 1e-12) on_chord += std::fabs(q[1] - p[1]);
+  }
+  CHECK_THAT(on_chord, WithinRel(2 * R, 1e-9));
+  CHECK_THAT(group_length(c, "outer"), WithinRel(2 * M_PI * R, 0.01));
   const NamedMesh rh = gmsh_rectangle_with_hole(-0.1, -0.1, 0.1, 0.1, 0.0, 0.0, 0.03, h);
   CHECK_THAT(mesh_area(rh.mesh), WithinRel(0.04 - M_PI * 0.03 * 0.03, 0.01));
   CHECK(rh.boundary_groups.count("hole") == 1);

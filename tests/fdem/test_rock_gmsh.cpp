@@ -78,22 +78,31 @@ TEST_CASE("F2: Lame thick cylinder under inner pressure, quasi-static", "[fdem][
   CHECK(s.energies().broken_joints == 0);
 }
 
-// F6 and F8 report their figures (validation.md: looser, mesh-dependent bounds). Measured on this solver:
-// the Brazilian strength comes out 37-45 % above f_t and the uniaxial strength 48-50 % above the
-// Mohr-Coulomb value, nearly the same at two element sizes (4 and 2.5 mm; 5 and 2.5 mm): cracks must run
-// along element edges, so a macroscopic crack is a zigzag of joints loaded obliquely. Those misses are
-// stated in docs/fdem-solver.md; the assertions below bound what the model does (it fails, in the right
-// place, above the analytic strength and within 1.6 times it) so that a regression is still caught.
-// Contact is off: the peak load comes before any piece separates.
+// F6 and F8 report their figures (validation.md: looser, mesh-dependent bounds). In this model a crack runs
+// along element edges. F6 is run twice: on a disc whose mesh has a row of joints along the loaded diameter
+// (the crack path the analytic solution assumes; asserted against the 15 % bound) and on a free mesh
+// (reported: near the centre every joint is inclined, and the compression across the diameter, three times
+// the tension, adds to its normal stress; a joint 15 degrees off needs 1.37 times the load). F8 is reported
+// with bounds on what the model does (docs/fdem-solver.md). Contact is off: the peak precedes separation.
 
-TEST_CASE("F6: Brazilian disc: tensile strength from the peak load, crack along the loaded diameter (reported)",
-          "[fdem][F6][gmsh]") {
-  const double R = 0.05, h = 0.004, v = 0.1;  // [m], [m], loading speed of each arc [m/s]
-  const NamedMesh m = gmsh_disc(0, 0, R, h);
+namespace {
+struct BrazilianResult {
+  double strength;          //!< 2 F / (pi D t) at the peak load [Pa]
+  double t_peak;            //!< [s]
+  int broken;
+  double near_axis_fraction;  //!< of the crack length within 0.2 R of the loaded diameter
+};
+
+//! Brazilian test on a disc of radius R: two loading arcs (boundary nodes within 0.12 R of the poles,
+//! x free) move towards the centre at v each, slowly enough (25 mm/s: the peak comes after some 75 wave
+//! transits) that the peak is quasi-static to a few per cent.
+BrazilianResult brazilian(double R, double h, bool joints_along_diameter) {
+  const double v = 0.025;
+  std::vector<Segment> chord;
+  if (joints_along_diameter) chord.push_back({{0.0, -R}, {0.0, R}});
+  const NamedMesh m = gmsh_disc(0, 0, R, h, chord);
   const FdemTopology topo = build_topology(m.mesh);
-  const RockMaterial rock = RockMaterial::paper_table2();
-  RockSolver s(topo, rock, strength_test_options());
-  // Loading arcs: the boundary nodes within 0.12 R of the poles move towards the centre (x free).
+  RockSolver s(topo, RockMaterial::paper_table2(), strength_test_options());
   auto on_arc = [&](double x, double y, double sign) {
     return sign * y > 0.9 * R && std::fabs(x) < 0.12 * R && std::hypot(x, y) > R - 1e-9;
   };
@@ -103,15 +112,12 @@ TEST_CASE("F6: Brazilian disc: tensile strength from the peak load, crack along 
   s.prescribe_velocity(top, false, true, 0, -v);
   s.prescribe_velocity(bottom, false, true, 0, v);
   s.prescribe_velocity({top[0]}, true, false, 0, 0);  // no rigid drift along x
-  const double dt = 0.9 * s.stable_dt();
   double peak = 0, t_peak = 0;
-  run_to(s, 1e-3, dt, [&] {
+  run_to(s, 2.2e-3, 0.9 * s.stable_dt(), [&] {
     const double f = 0.5 * (s.support_reaction(bottom)[1] - s.support_reaction(top)[1]);  // compressive load [N/m]
     if (f > peak) peak = f, t_peak = s.time();
   });
-  const double strength = 2 * peak / (M_PI * 2 * R);  // 2 F / (pi D t), t = 1 m
   const RockSnapshot snap = s.snapshot();
-  const RockEnergies e = s.energies();
   double near_axis = 0, total = 0;
   for (size_t j = 0; j < snap.joint_broken.size(); ++j) {
     if (!snap.joint_broken[j]) continue;
@@ -121,14 +127,27 @@ TEST_CASE("F6: Brazilian disc: tensile strength from the peak load, crack along 
     total += len;
     if (std::fabs(mx) < 0.2 * R) near_axis += len;
   }
-  std::printf("F6: peak load %.4e N/m at %.3f ms, 2F/(pi D) = %.3f MPa vs f_t %.2f MPa (%+.1f %%; bound 15 %%); %d "
-              "joints broken, %.0f %% of the crack length within 0.2 R of the loaded diameter\n",
-              peak, 1e3 * t_peak, strength / 1e6, rock.tensile_strength / 1e6,
-              100 * (strength / rock.tensile_strength - 1), e.broken_joints, 100 * near_axis / total);
-  CHECK(strength > rock.tensile_strength);
-  CHECK(strength < 1.6 * rock.tensile_strength);
-  CHECK(e.broken_joints > 0);
-  CHECK(near_axis > 0.5 * total);
+  return {2 * peak / (M_PI * 2 * R), t_peak, s.energies().broken_joints, total > 0 ? near_axis / total : 0.0};
+}
+}  // namespace
+
+TEST_CASE("F6: Brazilian disc: tensile strength from the peak load, crack along the loaded diameter",
+          "[fdem][F6][gmsh]") {
+  const double ft = RockMaterial::paper_table2().tensile_strength;
+  const BrazilianResult aligned = brazilian(0.05, 0.004, true);
+  const BrazilianResult free_mesh = brazilian(0.05, 0.004, false);
+  for (const auto& [name, r] : {std::pair<const char*, BrazilianResult>{"joints along the diameter", aligned},
+                                {"free mesh", free_mesh}})
+    std::printf("F6 (%s): peak at %.3f ms, 2F/(pi D) = %.3f MPa vs f_t %.2f MPa (%+.1f %%); %d joints broken, "
+                "%.0f %% of the crack length within 0.2 R of the loaded diameter\n",
+                name, 1e3 * r.t_peak, r.strength / 1e6, ft / 1e6, 100 * (r.strength / ft - 1), r.broken,
+                100 * r.near_axis_fraction);
+  CHECK(std::fabs(aligned.strength / ft - 1) < 0.15);
+  CHECK(aligned.near_axis_fraction > 0.5);
+  // Free mesh (reported): fails, in the right place, above f_t and within 1.6 f_t.
+  CHECK(free_mesh.strength > ft);
+  CHECK(free_mesh.strength < 1.6 * ft);
+  CHECK(free_mesh.near_axis_fraction > 0.5);
 }
 
 TEST_CASE("F8: uniaxial compression strength near 2 c cos(phi) / (1 - sin(phi)) (reported)", "[fdem][F8][gmsh]") {

@@ -22,13 +22,19 @@ struct NamedMesh {
   std::map<std::string, std::vector<std::array<int, 2>>> boundary_groups;
 };
 
+//! A straight segment [m] from a to b.
+struct Segment {
+  std::array<double, 2> a, b;
+};
+
 //! True when this build can call Gmsh.
 bool gmsh_available();
 
 //! Rectangle [x0, x1] x [y0, y1], target element size h [m]; groups left, right, bottom, top.
 NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h);
-//! Disc of radius r centred at (cx, cy); group outer.
-NamedMesh gmsh_disc(double cx, double cy, double r, double h);
+//! Disc of radius r centred at (cx, cy); group outer. `embedded`: segments (chords, with their ends on the
+//! circle) that the mesh must follow, so that a row of joints lies exactly along each.
+NamedMesh gmsh_disc(double cx, double cy, double r, double h, const std::vector<Segment>& embedded = {});
 //! Disc of radius r with a concentric circular hole of radius r_hole; groups outer, hole.
 NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, double h);
 //! Rectangle with a circular hole (centre (cx, cy), radius r_hole) inside it; groups left, right, bottom,
