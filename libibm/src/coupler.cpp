@@ -1,0 +1,168 @@
+//! \file coupler.cpp
+//! \brief GasRockCoupler: rock-to-gas masks and velocities, gas-to-rock edge pressures, the coupled step.
+#include "blastsim/ibm/coupler.hpp"
+
+#include "blastsim/ibm/coupling_kernels.hpp"
+
+#include <thrust/fill.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace blastsim::ibm {
+
+namespace {
+
+BLAST_HD inline int imax(int a, int b) { return a > b ? a : b; }
+BLAST_HD inline int imin(int a, int b) { return a < b ? a : b; }
+
+//! Marks the x-face (u) and y-face (v) points inside each triangle (docs/ibm.md "Rock -> gas": bounding-box
+//! rasterisation), keeping the highest triangle index per point.
+struct CoverKernel {
+  fdem::RockView rock;
+  cip::GasGrid g;
+  Field2D<int> u_owner, v_owner;
+  BLAST_HD void operator()(index_t ti) const {
+    const int t = static_cast<int>(ti);
+    double x[3], y[3];
+    for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
+    const double x0 = fmin(x[0], fmin(x[1], x[2])), x1 = fmax(x[0], fmax(x[1], x[2]));
+    const double y0 = fmin(y[0], fmin(y[1], y[2])), y1 = fmax(y[0], fmax(y[1], y[2]));
+    for (int face = 0; face < 2; ++face) {
+      // x-faces sit at (x_min + i dx, y_min + (j + 1/2) dy), y-faces at (x_min + (i + 1/2) dx, y_min + j dy).
+      const double ox = face == 0 ? 0.0 : 0.5, oy = face == 0 ? 0.5 : 0.0;
+      const int ni = face == 0 ? g.nx + 1 : g.nx, nj = face == 0 ? g.ny : g.ny + 1;
+      const int i0 = imax(0, static_cast<int>(ceil((x0 - g.x_min) / g.dx - ox)));
+      const int i1 = imin(ni - 1, static_cast<int>(floor((x1 - g.x_min) / g.dx - ox)));
+      const int j0 = imax(0, static_cast<int>(ceil((y0 - g.y_min) / g.dy - oy)));
+      const int j1 = imin(nj - 1, static_cast<int>(floor((y1 - g.y_min) / g.dy - oy)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          double w[3];
+          if (barycentric(x, y, g.x_min + (i + ox) * g.dx, g.y_min + (j + oy) * g.dy, w) && inside(w))
+            atomic_max(&(face == 0 ? u_owner : v_owner)(i, j), t);
+        }
+    }
+  }
+};
+
+//! Imposed velocity of each face point from its covering triangle's nodes (linear shape functions).
+struct FaceVelocityKernel {
+  fdem::RockView rock;
+  cip::GasGrid g;
+  int face;  // 0: x-faces (u), 1: y-faces (v)
+  Field2D<const int> owner;
+  Field2D<std::uint8_t> prescribed;
+  Field2D<double> imposed;
+  BLAST_HD void operator()(int i, int j) const {
+    const int t = owner(i, j);
+    prescribed(i, j) = t >= 0;
+    if (t < 0) return;
+    double x[3], y[3], w[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
+    const double px = g.x_min + (i + (face == 0 ? 0.0 : 0.5)) * g.dx;
+    const double py = g.y_min + (j + (face == 0 ? 0.5 : 0.0)) * g.dy;
+    barycentric(x, y, px, py, w);
+    const double* vel = face == 0 ? rock.vx : rock.vy;
+    imposed(i, j) = w[0] * vel[3 * t] + w[1] * vel[3 * t + 1] + w[2] * vel[3 * t + 2];
+  }
+};
+
+//! A cell is inactive when its four face points are in rock. A cell that changes state gets the ambient
+//! state with zero derivatives (covered: the gas there is replaced by the paper's ambient gas; uncovered:
+//! new gas space opened by moving rock starts from the ambient state).
+struct CellMaskKernel {
+  Field2D<const int> u_owner, v_owner;
+  Field2D<std::uint8_t> active;
+  cip::GasStateView s;
+  cip::GasPoint ambient;
+  BLAST_HD void operator()(int i, int j) const {
+    const bool covered = u_owner(i, j) >= 0 && u_owner(i + 1, j) >= 0 && v_owner(i, j) >= 0 && v_owner(i, j + 1) >= 0;
+    const std::uint8_t now = covered ? 0 : 1;
+    if (now == active(i, j)) return;
+    active(i, j) = now;
+    s.rho.f(i, j) = ambient.density, s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
+    s.e.f(i, j) = ambient.internal_energy, s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
+  }
+};
+
+//! Pressure on each exposed rock edge: the active cell nearest to the edge's midpoint within 3 cells
+//! (docs/ibm.md "Gas -> rock"; ties go to the first in scan order), else the ambient pressure.
+struct EdgePressureKernel {
+  fdem::RockView rock;
+  cip::GasGrid g;
+  cip::EquationOfState eos;
+  Field2D<const std::uint8_t> active;
+  Field2D<const double> rho, e;
+  double ambient_pressure;
+  BLAST_HD void operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    if (!rock.edge_exposed[s]) return;
+    const int t = s / 3, a = s, b = 3 * t + (s % 3 + 1) % 3;
+    const double mx = 0.5 * (rock.x[a] + rock.x[b]), my = 0.5 * (rock.y[a] + rock.y[b]);
+    const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
+    double best = 1e300, p = ambient_pressure;
+    for (int j = imax(0, cj - 3); j <= imin(g.ny - 1, cj + 3); ++j)
+      for (int i = imax(0, ci - 3); i <= imin(g.nx - 1, ci + 3); ++i) {
+        if (!active(i, j)) continue;
+        const double dx = g.cell_x(i) - mx, dy = g.cell_y(j) - my, d = dx * dx + dy * dy;
+        if (d < best) best = d, p = eos.pressure(rho(i, j), e(i, j));
+      }
+    rock.edge_pressure[s] = p;
+  }
+};
+
+}  // namespace
+
+GasRockCoupler::GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, const cip::GasPoint& ambient)
+    : gas_(gas), rock_(rock), ambient_(ambient) {
+  const index_t n = gas_.grid().padded_shape().size();
+  u_owner_.assign(n, -1);
+  v_owner_.assign(n, -1);
+}
+
+void GasRockCoupler::rock_to_gas() {
+  const cip::GasGrid g = gas_.grid();
+  const PaddedShape sh = g.padded_shape();
+  thrust::fill(thrust::device, u_owner_.begin(), u_owner_.end(), -1);
+  thrust::fill(thrust::device, v_owner_.begin(), v_owner_.end(), -1);
+  const fdem::RockView rock = rock_.view();
+  const Field2D<int> uo = make_field_view(u_owner_, sh), vo = make_field_view(v_owner_, sh);
+  for_each_index("ibm.cover", rock.triangles, CoverKernel{rock, g, uo, vo});
+  const cip::ImmersedBoundaryView ib = gas_.immersed_boundary();
+  for_each_cell("ibm.face_velocity.u", 0, g.nx + 1, 0, g.ny, FaceVelocityKernel{rock, g, 0, uo, ib.u_prescribed, ib.u_imposed});
+  for_each_cell("ibm.face_velocity.v", 0, g.nx, 0, g.ny + 1, FaceVelocityKernel{rock, g, 1, vo, ib.v_prescribed, ib.v_imposed});
+  for_each_cell("ibm.cells", 0, g.nx, 0, g.ny, CellMaskKernel{uo, vo, ib.cell_active, gas_.state(), ambient_});
+  gas_.apply_boundaries();
+}
+
+void GasRockCoupler::gas_to_rock() {
+  const cip::GasGrid g = gas_.grid();
+  const cip::GasStateView s = gas_.state();
+  const cip::ImmersedBoundaryView ib = gas_.immersed_boundary();
+  const fdem::RockView rock = rock_.view();
+  const cip::EquationOfState eos = gas_.eos();
+  for_each_index("ibm.edge_pressure", 3 * static_cast<index_t>(rock.triangles),
+                 EdgePressureKernel{rock, g, eos, ib.cell_active, s.rho.f, s.e.f,
+                                    eos.pressure(ambient_.density, ambient_.internal_energy)});
+}
+
+void GasRockCoupler::step(double dt) {
+  rock_to_gas();
+  gas_.step(dt);
+  gas_to_rock();
+  rock_.step(dt);
+}
+
+double GasRockCoupler::stable_dt(double courant) { return std::min(gas_.courant_dt(courant), rock_.stable_dt()); }
+
+long GasRockCoupler::inactive_cells() {
+  const cip::GasGrid g = gas_.grid();
+  const Field2D<const std::uint8_t> active = gas_.immersed_boundary().cell_active;
+  const int nx = g.nx;
+  return static_cast<long>(reduce_sum("ibm.inactive", static_cast<index_t>(g.nx) * g.ny, 0.0, [=] BLAST_HD(index_t k) {
+    return active(static_cast<int>(k % nx), static_cast<int>(k / nx)) ? 0.0 : 1.0;
+  }));
+}
+
+}  // namespace blastsim::ibm
