@@ -146,11 +146,6 @@ struct MomentumKernel {
   BLAST_HD void operator()(int i, int j) const {
     const CipFieldView& V = axis == 0 ? s.u : s.v;
     const Field2D<double>& out = axis == 0 ? n.u.f : n.v.f;
-    if (prescribed(i, j)) {
-      out(i, j) = imposed(i, j);
-      dissipation(i, j) = 0.0;
-      return;
-    }
     const Field2D<double>& u = s.u.f;
     const Field2D<double>& v = s.v.f;
     // The two cells beside the face: (ia, ja) on the low side, (i, j) on the high side.
@@ -187,17 +182,19 @@ struct MomentumKernel {
         add(sign, Fc, swept_value_at(V, 0, r - 1, j, wc, wc_t, dt, dx, dy, limiter), dx);
       }
     }
-    // A wall face stays at rest: the kinetic energy carried into its dual cell becomes heat.
+    // A wall face stays at rest and an immersed (prescribed) face moves with the solid: the kinetic energy
+    // carried into its dual cell that the face cannot keep becomes heat, as for any face.
     const int k = axis == 0 ? i : j, n_cells = axis == 0 ? nx : ny;
     const bool wall_face = (k == 0 && wall_low) || (k == n_cells && wall_high);
-    const double w_new = wall_face ? 0.0 : (m_old * w0 - dt * flux) / m_new;
+    const double w_new = prescribed(i, j) ? imposed(i, j) : (wall_face ? 0.0 : (m_old * w0 - dt * flux) / m_new);
     out(i, j) = w_new;
     dissipation(i, j) = (0.5 * m_old * w0 * w0 - dt * ke_flux) - 0.5 * m_new * w_new * w_new;
   }
 };
 
 //! Internal energy of a cell: flux-form rho e plus half the kinetic energy dissipated on each of its four
-//! faces (all of it for a face on the outer boundary, which has no cell outside).
+//! faces (all of it for a face on the outer boundary or next to an inactive cell: no gas cell on the other
+//! side takes the other half).
 struct EnergyUpdateKernel {
   GasStateView n;
   Field2D<const std::uint8_t> active;
@@ -211,8 +208,11 @@ struct EnergyUpdateKernel {
     }
     const int ir = periodic_x && i + 1 == nx ? 0 : i + 1;
     const int jt = periodic_y && j + 1 == ny ? 0 : j + 1;
-    const double wl = !periodic_x && i == 0 ? 1.0 : 0.5, wr = !periodic_x && i + 1 == nx ? 1.0 : 0.5;
-    const double wb = !periodic_y && j == 0 ? 1.0 : 0.5, wt = !periodic_y && j + 1 == ny ? 1.0 : 0.5;
+    const int il = periodic_x && i == 0 ? nx - 1 : i - 1, jb = periodic_y && j == 0 ? ny - 1 : j - 1;
+    const double wl = (!periodic_x && i == 0) || !active(il, j) ? 1.0 : 0.5;
+    const double wr = (!periodic_x && i + 1 == nx) || !active(ir, j) ? 1.0 : 0.5;
+    const double wb = (!periodic_y && j == 0) || !active(i, jb) ? 1.0 : 0.5;
+    const double wt = (!periodic_y && j + 1 == ny) || !active(i, jt) ? 1.0 : 0.5;
     const double heat = wl * Du(i, j) + wr * Du(ir, j) + wb * Dv(i, j) + wt * Dv(i, jt);
     n.e.f(i, j) = (rho_e(i, j) + heat) / n.rho.f(i, j);
   }

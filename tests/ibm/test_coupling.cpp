@@ -6,6 +6,7 @@
 #include "exact_riemann.hpp"
 
 #include <cmath>
+
 #include <cstdio>
 
 using namespace blastsim;
@@ -181,12 +182,14 @@ TEST_CASE("I3: gas sealed in a hole of intact rock keeps its mass while the rock
   while (gas.time() < 1e-4) coupler.step(coupler.stable_dt(0.1));
   const double m1 = cavity_mass();
   const fdem::RockEnergies e = rock.energies();
-  // Coupled energy budget (printed, not yet asserted): what the gas lost should equal the work its pressure
-  // did on the rock. It does not yet: the gas solver loses energy at immersed walls even when they are at rest
-  // (a static mask around the same hole loses 3.6 J/m of 1.39e4 J/m in 100 us while mass stays exact), here
-  // 5.7 J/m against 0.09 J/m of work on the rock. Issue #4 keeps this open.
+  // Coupled energy budget (printed, not yet asserted): what the gas lost (less what left the grid) should
+  // equal the work its pressure did on the rock. With immersed faces now conserving energy (a static mask
+  // around the hole: round-off), the residual is -5.1 / +0.8 / +5.9 % on 80 / 120 / 160 cells: about the
+  // 5 % bound but not converging with the grid (the rock is loaded by the nearest cell's pressure at each
+  // edge midpoint, the gas by the staircase of prescribed faces). Issue #4 keeps this open.
   const cip::GasTotals g1 = gas.totals();
-  const double gas_lost = (g0.internal_energy + g0.kinetic_energy) - (g1.internal_energy + g1.kinetic_energy);
+  const double gas_lost = (g0.internal_energy + g0.kinetic_energy) - (g1.internal_energy + g1.kinetic_energy) -
+                          gas.boundary_outflow().energy;  // less what left through the grid's outer boundary
   std::printf("I3 energy: gas lost %.5e J/m, pressure work on the rock %.5e J/m (%+.2f %%), rock kinetic + strain "
               "%.5e J/m\n", gas_lost, e.external_work, 100 * (e.external_work / gas_lost - 1), e.kinetic + e.strain);
   std::printf("I3: cavity gas mass %.6e -> %.6e kg/m (relative change %.2e) after %ld steps; rock kinetic %.3e J/m, strain "
