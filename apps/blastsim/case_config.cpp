@@ -112,12 +112,7 @@ CaseConfig read_case(const toml::table& input) {
   time.finish();
 
   TableReader out = root.table("output");
-  const OutputBasics basics = read_output_basics(out, 1);
-  c.output_directory = basics.directory;
-  c.output_interval = basics.interval;
-  c.vtk = basics.vtk;
-  c.progress_interval = basics.progress_interval;
-  c.monitor_interval = basics.monitor_interval;
+  assign_output_basics(read_output_basics(out, 1), c);
   c.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
   out.finish();
 

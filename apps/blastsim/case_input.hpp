@@ -29,6 +29,16 @@ struct OutputBasics {
 };
 OutputBasics read_output_basics(TableReader& out, long long monitor_default);
 
+//! Copies the shared output keys into a gas or rock case configuration.
+template <class Config>
+void assign_output_basics(const OutputBasics& b, Config& c) {
+  c.output_directory = b.directory;
+  c.output_interval = b.interval;
+  c.vtk = b.vtk;
+  c.progress_interval = b.progress_interval;
+  c.monitor_interval = b.monitor_interval;
+}
+
 //! Parses a case file and applies the overrides (the first half of load_case()).
 toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides);
 

@@ -107,12 +107,7 @@ RockCaseConfig read_rock_case(const toml::table& input) {
   time.finish();
 
   TableReader out = root.table("output");
-  const OutputBasics basics = read_output_basics(out, 10);
-  c.output_directory = basics.directory;
-  c.output_interval = basics.interval;
-  c.vtk = basics.vtk;
-  c.progress_interval = basics.progress_interval;
-  c.monitor_interval = basics.monitor_interval;
+  assign_output_basics(read_output_basics(out, 10), c);
   out.finish();
   root.finish();
   c.material.validate();
