@@ -39,11 +39,12 @@ int main(int argc, char** argv) {
   std::printf("backend %s, threads %d, %d timed steps; copy bandwidth (read + write) %.1f GB/s\n", backend_name(),
               threads, steps, bw / 1e9);
   // Floor bytes per item (each array read or written once): triangle 6 positions + 6 velocities + 4 inv F0
-  // + eta in, 6 forces + 3 stresses out = 26 doubles; joint 4 indices + 8 strengths + 8 positions + 3 damage
-  // in, 3 damage + 4 x 2 slot forces out (+12 doubles of opening/traction history) = 30 doubles + 16 B;
-  // node: position, velocity, mass, 2 own forces x 2, 2 slots x 2, work x 4 in; position, velocity,
-  // work x 4, support x 2 out = 31 doubles.
-  const double tri_bytes = 26 * 8, joint_bytes = 30 * 8 + 16 + 12 * 8, node_bytes = 31 * 8;
+  // + eta + 3 edge pressures in (+3 exposed flags), 6 forces + 6 pressure loads + 3 stresses out =
+  // 35 doubles + 3 B; joint 4 indices + 8 strengths + 8 positions + 3 damage in, 3 damage + 4 x 2 slot forces
+  // out (+12 doubles of opening/traction history) = 30 doubles + 16 B + 12 doubles; node: position,
+  // velocity, mass, 3 per-node forces x 2, 2 slots x 2, work x 4 in; position, velocity, work x 4,
+  // support x 2 out = 33 doubles.
+  const double tri_bytes = 35 * 8 + 3, joint_bytes = 30 * 8 + 16 + 12 * 8, node_bytes = 33 * 8;
   std::printf("%8s %8s %9s | %9s %9s %9s %9s %9s | %12s %11s | %s\n", "tri", "joints", "contact", "tri ms",
               "joint ms", "contact ms", "node ms", "step ms", "(t+j) upd/s", "rebuild ms", "floor/bw per phase (t, j, n)");
   for (int n : sizes)

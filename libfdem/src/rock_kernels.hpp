@@ -14,7 +14,7 @@ namespace blastsim::fdem::detail {
 struct RockArrays {
   double *x, *y, *vx, *vy;
   const double *x0, *y0, *mass;
-  double *f_tri_x, *f_tri_y, *f_con_x, *f_con_y;
+  double *f_tri_x, *f_tri_y, *f_con_x, *f_con_y, *f_pres_x, *f_pres_y;
   const std::uint8_t* constraint;
   const double* v_prescribed;
   double* work;
@@ -93,10 +93,13 @@ BLAST_HD inline void triangle_nodes(const RockArrays& r, int t, Vec2 p[3]) {
 }
 
 //! Internal forces of each triangle on its own three nodes (Munjiza ch. 2; fdem.md "Triangle internal
-//! force"), its Cauchy stress for output, and the work of its viscous damping eta D (dissipation).
+//! force"), its Cauchy stress for output, the work of its viscous damping eta D (dissipation), and the
+//! pressure loads of its exposed edges on its nodes (uniform on each edge, one-point rule, half to each node,
+//! along the inward normal; docs/ibm.md). Everything from the positions at the start of the step: the
+//! node update that moves the nodes runs after.
 struct TriangleForceKernel {
   RockArrays r;
-  double lambda, mu, dt;
+  double lambda, mu, pressure_scale, dt;
   BLAST_HD void operator()(index_t ti) const {
     const int t = static_cast<int>(ti);
     Vec2 p[3], v[3];
@@ -118,6 +121,20 @@ struct TriangleForceKernel {
     r.stress[3 * t] = T.a;
     r.stress[3 * t + 1] = T.b;
     r.stress[3 * t + 2] = T.d;
+    Vec2 fp[3] = {{0, 0}, {0, 0}, {0, 0}};
+    for (int e = 0; e < 3; ++e) {  // edge slot 3t+e runs from node e to node e+1
+      const int s = 3 * t + e;
+      const double pe = r.edge_exposed[s] ? pressure_scale * r.edge_pressure[s] : 0.0;
+      if (pe == 0.0) continue;
+      const int e1 = (e + 1) % 3;
+      const Vec2 half{-0.5 * pe * (p[e1].y - p[e].y), 0.5 * pe * (p[e1].x - p[e].x)};
+      fp[e] = {fp[e].x + half.x, fp[e].y + half.y};
+      fp[e1] = {fp[e1].x + half.x, fp[e1].y + half.y};
+    }
+    for (int k = 0; k < 3; ++k) {
+      r.f_pres_x[3 * t + k] = fp[k].x;
+      r.f_pres_y[3 * t + k] = fp[k].y;
+    }
     if (eta > 0) {  // dissipation rate A eta D:D
       const Mat2 L = LX * FX.inverse();
       const double dxy = 0.5 * (L.b + L.c);
@@ -261,13 +278,13 @@ struct ContactForceKernel {
 };
 
 //! Node update (symplectic Euler, fdem.md): gathers the node's forces (its triangle, the joints on its two
-//! edges, contact, pressure on its exposed edges, gravity), applies prescribed velocities, moves the node,
+//! edges, contact, pressure on its triangle's exposed edges, gravity), applies prescribed velocities, moves the node,
 //! and accumulates the work of each kind of force by the trapezoid rule: the force at x_n works over half of
 //! the previous displacement and half of the next one, so linear springs' work equals their energy change
 //! (f . v_new dt alone would add f^2 dt^2 / 2m every step).
 struct NodeUpdateKernel {
   RockArrays r;
-  double gx, gy, pressure_scale, dt, dt_prev;
+  double gx, gy, dt, dt_prev;
   BLAST_HD void operator()(index_t ni) const {
     const int n = static_cast<int>(ni);
     const int t = n / 3, k = n % 3;
@@ -276,19 +293,7 @@ struct NodeUpdateKernel {
     const double m = r.mass[n];
     const Vec2 f_joint{r.slot_force[4 * slot_first] + r.slot_force[4 * slot_second + 2],
                        r.slot_force[4 * slot_first + 1] + r.slot_force[4 * slot_second + 3]};
-    Vec2 f_ext{m * gx, m * gy};
-    const int slots[2] = {slot_first, slot_second};
-    for (int c = 0; c < 2; ++c) {
-      const int s = slots[c];
-      if (!r.edge_exposed[s]) continue;
-      const double p = pressure_scale * r.edge_pressure[s];
-      if (p == 0.0) continue;
-      const int na = s, nb = 3 * t + (s % 3 + 1) % 3;
-      const double dx = r.x[nb] - r.x[na], dy = r.y[nb] - r.y[na];
-      // Uniform pressure on the edge (one-point rule), half to each node, along the inward normal.
-      f_ext.x -= 0.5 * p * dy;
-      f_ext.y += 0.5 * p * dx;
-    }
+    const Vec2 f_ext{m * gx + r.f_pres_x[n], m * gy + r.f_pres_y[n]};
     const Vec2 f_con{r.f_con_x[n], r.f_con_y[n]};
     const Vec2 f{r.f_tri_x[n] + f_joint.x + f_con.x + f_ext.x, r.f_tri_y[n] + f_joint.y + f_con.y + f_ext.y};
     Vec2 v{r.vx[n] + f.x / m * dt, r.vy[n] + f.y / m * dt};

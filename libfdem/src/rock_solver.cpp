@@ -93,6 +93,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   x_ = upload(x), y_ = upload(y), x0_ = upload(x), y0_ = upload(y), mass_ = upload(mass);
   vx_.assign(nodes, 0.0), vy_.assign(nodes, 0.0);
   f_tri_x_.assign(nodes, 0.0), f_tri_y_.assign(nodes, 0.0), f_con_x_.assign(nodes, 0.0), f_con_y_.assign(nodes, 0.0);
+  f_pres_x_.assign(nodes, 0.0), f_pres_y_.assign(nodes, 0.0);
   constraint_.assign(nodes, 0), v_prescribed_.assign(2 * nodes, 0.0), work_.assign(4 * nodes, 0.0);
   support_.assign(2 * nodes, 0.0);
   inv_f0_ = upload(inv_f0), area0_ = upload(area0), eta_ = upload(eta);
@@ -137,6 +138,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
 detail::RockArrays RockSolver::arrays() {
   return {device_ptr(x_), device_ptr(y_), device_ptr(vx_), device_ptr(vy_), device_ptr(x0_), device_ptr(y0_),
           device_ptr(mass_), device_ptr(f_tri_x_), device_ptr(f_tri_y_), device_ptr(f_con_x_), device_ptr(f_con_y_),
+          device_ptr(f_pres_x_), device_ptr(f_pres_y_),
           device_ptr(constraint_), device_ptr(v_prescribed_), device_ptr(work_), device_ptr(support_), device_ptr(inv_f0_),
           device_ptr(area0_), device_ptr(eta_), device_ptr(stress_), device_ptr(dissipation_),
           device_ptr(slot_force_), device_ptr(slot_neighbour_), device_ptr(slot_joint_), device_ptr(edge_exposed_),
@@ -248,7 +250,7 @@ void RockSolver::step(double dt) {
 // Munjiza 2004 ch. 2: constant-strain triangles.
 void RockSolver::triangle_forces(double dt) {
   for_each_index("fdem.triangles", triangles_,
-                 detail::TriangleForceKernel{arrays(), material_.lame_lambda(), material_.shear_modulus(), dt});
+                 detail::TriangleForceKernel{arrays(), material_.lame_lambda(), material_.shear_modulus(), pressure_scale_, dt});
 }
 
 // Munjiza 2004 ch. 7: cohesive joints.
@@ -267,7 +269,7 @@ void RockSolver::contact_forces(double dt) {
 // Symplectic Euler (fdem.md): gather the node's forces, integrate.
 void RockSolver::update_nodes(double dt) {
   for_each_index("fdem.nodes", node_count(),
-                 detail::NodeUpdateKernel{arrays(), options_.gravity[0], options_.gravity[1], pressure_scale_, dt, dt_prev_});
+                 detail::NodeUpdateKernel{arrays(), options_.gravity[0], options_.gravity[1], dt, dt_prev_});
   dt_prev_ = dt;
 }
 

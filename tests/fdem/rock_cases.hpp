@@ -56,6 +56,19 @@ inline TriangleMesh two_strips(int n, double s) {
   return m;
 }
 
+//! Lumped node masses [kg/m] of the FDEM topology (rho A / 3 per node of each triangle, as the solver has them).
+inline std::vector<double> node_masses(const FdemTopology& topo, double density) {
+  std::vector<double> m;
+  for (int t = 0; t < topo.triangle_count(); ++t) {
+    const auto& a = topo.node_positions[3 * t];
+    const auto& b = topo.node_positions[3 * t + 1];
+    const auto& c = topo.node_positions[3 * t + 2];
+    const double area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+    for (int k = 0; k < 3; ++k) m.push_back(density * area / 3);
+  }
+  return m;
+}
+
 //! Runs the solver to time `t_end` with steps of dt, calling `each` after every step.
 inline void run_to(RockSolver& s, double t_end, double dt, const std::function<void()>& each = {}) {
   while (s.time() < t_end - 1e-12 * t_end) {

@@ -94,10 +94,8 @@ TEST_CASE("I1: uniform gas around a closed block: edge pressures p, net force ze
               "= %.3e N s/m\n", edges, worst, px / scale, py / scale, scale);
   CHECK(edges == 16);
   CHECK(worst < 0.01);
-  // Bound 1e-8: the triangles at rest carry round-off stresses of order 1e-14 E (F7), i.e. nodal forces
-  // of order 1e-7 of the pressure forces here, and the sum runs over 96 nodes.
-  CHECK(std::fabs(px) < 1e-8 * scale);
-  CHECK(std::fabs(py) < 1e-8 * scale);
+  CHECK(std::fabs(px) < 1e-12 * scale);
+  CHECK(std::fabs(py) < 1e-12 * scale);
   // Each node on the outline is pushed inward by p x (its share of the edges): the strain is compressive.
   const fdem::RockEnergies e = c.rock.energies();
   CHECK(e.external_work > 0);

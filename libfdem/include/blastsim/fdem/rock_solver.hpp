@@ -48,7 +48,7 @@ class RockSolver {
   void step(double dt);
 
   // --- the phases of step(), public for benchmarks and profiling (call them in this order) ---
-  void triangle_forces(double dt);  //!< internal forces, stresses, damping (one thread per triangle)
+  void triangle_forces(double dt);  //!< internal forces, stresses, damping, edge pressures (one thread per triangle)
   void joint_forces();              //!< cohesive joints, damage, breakage (one thread per joint)
   void contact_forces(double dt);   //!< contact and friction (one thread per triangle); no-op without contact
   void update_nodes(double dt);     //!< gather and integrate (one thread per node)
@@ -102,6 +102,7 @@ class RockSolver {
   // nodes (3 per triangle)
   DeviceVector<double> x_, y_, vx_, vy_, x0_, y0_, mass_;
   DeviceVector<double> f_tri_x_, f_tri_y_, f_con_x_, f_con_y_;  // triangle and contact forces per node
+  DeviceVector<double> f_pres_x_, f_pres_y_;                    // pressure loads per node (triangle phase)
   DeviceVector<std::uint8_t> constraint_;                      // bit 0: x prescribed, bit 1: y prescribed
   DeviceVector<double> v_prescribed_;                           // 2 per node
   DeviceVector<double> work_;                                   // 4 per node: external, joint, contact, support
