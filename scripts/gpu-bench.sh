@@ -25,7 +25,7 @@ t0=$(date +%s)
 ctest --test-dir build-cuda --output-on-failure > "$out/ctest.log" 2>&1
 note "ctest on the GPU: rc=$? in $(( $(date +%s) - t0 )) s: $(grep -E 'tests passed|tests failed' "$out/ctest.log")"
 
-# memcheck on a small gas run of the driver (the coupled case replaces it once the coupling exists)
+# memcheck on a small gas run of the driver
 t0=$(date +%s)
 compute-sanitizer --tool memcheck --error-exitcode 9 build-cuda/apps/blastsim/blastsim -q \
   examples/gas_expansion/gas_expansion.toml domain.nx=64 domain.ny=64 time.end=2e-5 output.vtk=false \
@@ -35,6 +35,10 @@ note "compute-sanitizer memcheck (gas 64^2, 2e-5 s): rc=$? $(grep -E 'ERROR SUMM
 compute-sanitizer --tool memcheck --error-exitcode 9 build-cuda/tests/fdem/test_fdem "[determinism],[F7]" \
   >> "$out/memcheck.log" 2>&1
 note "compute-sanitizer memcheck (test_fdem [determinism],[F7]): rc=$? $(grep -E 'ERROR SUMMARY' "$out/memcheck.log" | tail -1)"
+# memcheck on the coupler: masks, I1 and the shock reflected by an immersed rock block (I2)
+compute-sanitizer --tool memcheck --error-exitcode 9 build-cuda/tests/ibm/test_ibm "[masks],[I1],[I2]" \
+  >> "$out/memcheck.log" 2>&1
+note "compute-sanitizer memcheck (test_ibm [masks],[I1],[I2]): rc=$? $(grep -E 'ERROR SUMMARY' "$out/memcheck.log" | tail -1)"
 
 sizes=${GPU_BENCH_SIZES:-1250,2500,5001}
 build-cuda/apps/bench/blastsim-bench-cip --sizes="$sizes" --steps=20 > "$out/bench_cip.log" 2>&1

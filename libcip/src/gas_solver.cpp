@@ -320,9 +320,11 @@ struct TotalsOfCell {
   Field2D<const std::uint8_t> active;
   int nx;
   double area;
+  GasGrid g;
+  CellRegion region;
   BLAST_HD TotalsSum operator()(index_t k) const {
     const int j = static_cast<int>(k / nx), i = static_cast<int>(k - static_cast<index_t>(j) * nx);
-    if (!active(i, j)) return {0, 0, 0, 0, 0};
+    if (!active(i, j) || !region.contains(g.cell_x(i), g.cell_y(j))) return {0, 0, 0, 0, 0};
     const double m = s.rho.f(i, j) * area;
     // Momentum and kinetic energy live on the faces: each face carries the mass of its dual cell,
     // (rho_left + rho_right)/2 x area, and gives half of its share to each of its two cells.
@@ -568,11 +570,11 @@ void GasSolver::step(double dt) {
   ++steps_;
 }
 
-GasTotals GasSolver::totals() {
+GasTotals GasSolver::totals(const CellRegion& region) {
   const ImmersedBoundaryView ib = immersed_boundary();
   const detail::TotalsSum t = reduce_sum(
       "cip.totals", static_cast<index_t>(grid_.nx) * grid_.ny, detail::TotalsSum{0, 0, 0, 0, 0},
-      detail::TotalsOfCell{state(), {ib.cell_active.data, ib.cell_active.shape}, grid_.nx, grid_.cell_area()});
+      detail::TotalsOfCell{state(), {ib.cell_active.data, ib.cell_active.shape}, grid_.nx, grid_.cell_area(), grid_, region});
   GasTotals out;
   out.mass = t.m;
   out.momentum_x = t.mx;

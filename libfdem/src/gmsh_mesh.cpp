@@ -149,6 +149,19 @@ std::string rectangle_side(double bx0, double by0, double bx1, double by1, doubl
   return "hole";
 }
 
+//! Embeds straight segments in the surfaces: the meshes on the two sides of each share its nodes, so
+//! joints lie along it (a chord, a pre-cut crack).
+void embed_segments(const gmsh::vectorpair& surfaces, const std::vector<Segment>& embedded) {
+  if (embedded.empty()) return;
+  gmsh::vectorpair tools, out;
+  std::vector<gmsh::vectorpair> map;
+  for (const Segment& g : embedded) {
+    const int p0 = gmsh::model::occ::addPoint(g.a[0], g.a[1], 0), p1 = gmsh::model::occ::addPoint(g.b[0], g.b[1], 0);
+    tools.push_back({1, gmsh::model::occ::addLine(p0, p1)});
+  }
+  gmsh::model::occ::fragment(surfaces, tools, out, map);
+}
+
 template <class Build>
 NamedMesh guarded(const std::string& what, Build build) {
   try {
@@ -179,21 +192,13 @@ NamedMesh gmsh_disc(double cx, double cy, double r, double h, const std::vector<
   require_size(h, "disc mesh");
   if (!(r > 0)) throw InputError("disc mesh: radius " + std::to_string(r) + " m must be > 0");
   return guarded("disc mesh", [&] {
-    const int disc = gmsh::model::occ::addDisk(cx, cy, 0, r, r);
-    if (!embedded.empty()) {  // split the disc along the segments: the two sides' meshes share its nodes
-      gmsh::vectorpair tools, out;
-      std::vector<gmsh::vectorpair> map;
-      for (const Segment& g : embedded) {
-        const int p0 = gmsh::model::occ::addPoint(g.a[0], g.a[1], 0), p1 = gmsh::model::occ::addPoint(g.b[0], g.b[1], 0);
-        tools.push_back({1, gmsh::model::occ::addLine(p0, p1)});
-      }
-      gmsh::model::occ::fragment({{2, disc}}, tools, out, map);
-    }
+    embed_segments({{2, gmsh::model::occ::addDisk(cx, cy, 0, r, r)}}, embedded);
     return mesh_shape(h, [](double, double, double, double) { return std::string("outer"); }, "disc mesh");
   });
 }
 
-NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, double h) {
+NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, double h,
+                              const std::vector<Segment>& embedded) {
   require_size(h, "disc-with-hole mesh");
   if (!(r_hole > 0) || !(r > r_hole))
     throw InputError("disc-with-hole mesh: need 0 < hole radius (" + std::to_string(r_hole) + " m) < radius (" +
@@ -204,6 +209,7 @@ NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, dou
     gmsh::vectorpair out;
     std::vector<gmsh::vectorpair> map;
     gmsh::model::occ::cut({{2, outer}}, {{2, hole}}, out, map);
+    embed_segments(out, embedded);
     return mesh_shape(h, [&](double a, double, double c, double) {
       return 0.5 * (c - a) > 0.5 * (r + r_hole) ? std::string("outer") : std::string("hole");
     }, "disc-with-hole mesh");
@@ -247,7 +253,7 @@ namespace {
 
 NamedMesh gmsh_rectangle(double, double, double, double, double) { no_gmsh("rectangle mesh"); }
 NamedMesh gmsh_disc(double, double, double, double, const std::vector<Segment>&) { no_gmsh("disc mesh"); }
-NamedMesh gmsh_disc_with_hole(double, double, double, double, double) { no_gmsh("disc-with-hole mesh"); }
+NamedMesh gmsh_disc_with_hole(double, double, double, double, double, const std::vector<Segment>&) { no_gmsh("disc-with-hole mesh"); }
 NamedMesh gmsh_rectangle_with_hole(double, double, double, double, double, double, double, double) {
   no_gmsh("rectangle-with-hole mesh");
 }

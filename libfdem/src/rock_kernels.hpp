@@ -17,7 +17,7 @@ struct RockArrays {
   double *f_tri_x, *f_tri_y, *f_con_x, *f_con_y, *f_pres_x, *f_pres_y;
   const std::uint8_t* constraint;
   const double* v_prescribed;
-  double* work;
+  double* work;     // kWorkKinds per node: pressure, joint, contact, support, gravity [J/m]
   double* support;  // 2 per node: force of the prescribed-velocity support in the last step [N/m]
   const double *inv_f0, *area0, *eta;
   double *stress, *dissipation;
@@ -293,7 +293,8 @@ struct NodeUpdateKernel {
     const double m = r.mass[n];
     const Vec2 f_joint{r.slot_force[4 * slot_first] + r.slot_force[4 * slot_second + 2],
                        r.slot_force[4 * slot_first + 1] + r.slot_force[4 * slot_second + 3]};
-    const Vec2 f_ext{m * gx + r.f_pres_x[n], m * gy + r.f_pres_y[n]};
+    const Vec2 f_grav{m * gx, m * gy}, f_pres{r.f_pres_x[n], r.f_pres_y[n]};
+    const Vec2 f_ext{f_grav.x + f_pres.x, f_grav.y + f_pres.y};
     const Vec2 f_con{r.f_con_x[n], r.f_con_y[n]};
     const Vec2 f{r.f_tri_x[n] + f_joint.x + f_con.x + f_ext.x, r.f_tri_y[n] + f_joint.y + f_con.y + f_ext.y};
     Vec2 v{r.vx[n] + f.x / m * dt, r.vy[n] + f.y / m * dt};
@@ -314,11 +315,12 @@ struct NodeUpdateKernel {
     r.vy[n] = v.y;
     r.x[n] += v.x * dt;
     r.y[n] += v.y * dt;
-    double* w = r.work + 4 * n;
-    w[0] += f_ext.x * d.x + f_ext.y * d.y;
+    double* w = r.work + kWorkKinds * n;
+    w[0] += f_pres.x * d.x + f_pres.y * d.y;
     w[1] -= f_joint.x * d.x + f_joint.y * d.y;
     w[2] -= f_con.x * d.x + f_con.y * d.y;
     w[3] += support.x * d.x + support.y * d.y;
+    w[4] += f_grav.x * d.x + f_grav.y * d.y;
   }
 };
 

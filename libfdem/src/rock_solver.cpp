@@ -94,7 +94,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   vx_.assign(nodes, 0.0), vy_.assign(nodes, 0.0);
   f_tri_x_.assign(nodes, 0.0), f_tri_y_.assign(nodes, 0.0), f_con_x_.assign(nodes, 0.0), f_con_y_.assign(nodes, 0.0);
   f_pres_x_.assign(nodes, 0.0), f_pres_y_.assign(nodes, 0.0);
-  constraint_.assign(nodes, 0), v_prescribed_.assign(2 * nodes, 0.0), work_.assign(4 * nodes, 0.0);
+  constraint_.assign(nodes, 0), v_prescribed_.assign(2 * nodes, 0.0), work_.assign(kWorkKinds * nodes, 0.0);
   support_.assign(2 * nodes, 0.0);
   inv_f0_ = upload(inv_f0), area0_ = upload(area0), eta_ = upload(eta);
   stress_.assign(3 * triangles_, 0.0), dissipation_.assign(2 * triangles_, 0.0);
@@ -305,6 +305,36 @@ void RockSolver::set_edge_pressure(const std::vector<int>& slots, double pressur
   copy_from_host(edge_pressure_, p);
 }
 
+std::vector<int> RockSolver::joints_on_segment(double xa, double ya, double xb, double yb, double tolerance) const {
+  const std::vector<double> px = to_host(x0_), py = to_host(y0_);
+  const double lx = xb - xa, ly = yb - ya, len2 = lx * lx + ly * ly;
+  auto on_segment = [&](int n) {  // distance from the segment within tolerance
+    const double s = len2 > 0 ? std::clamp(((px[n] - xa) * lx + (py[n] - ya) * ly) / len2, 0.0, 1.0) : 0.0;
+    return std::hypot(px[n] - xa - s * lx, py[n] - ya - s * ly) <= tolerance;
+  };
+  std::vector<int> out;
+  for (int j = 0; j < joints_; ++j) {
+    const std::array<int, 4>& n = joint_nodes_host_[j];
+    if (on_segment(n[0]) && on_segment(n[1])) out.push_back(j);
+  }
+  return out;
+}
+
+void RockSolver::break_joints(const std::vector<int>& joints) {
+  std::vector<std::uint8_t> broken = to_host(joint_broken_), exposed = to_host(edge_exposed_);
+  std::vector<double> damage = to_host(joint_damage_);
+  for (int j : joints) {
+    if (j < 0 || j >= joints_) throw InputError("joint " + std::to_string(j) + " does not exist");
+    broken[j] = 1;
+    for (int q = 0; q < 3; ++q) damage[3 * j + q] = 1.0;
+    exposed[joint_nodes_host_[j][0]] = 1;  // face A's slot (its first node)
+    exposed[joint_nodes_host_[j][2]] = 1;  // face B's slot
+  }
+  copy_from_host(joint_broken_, broken);
+  copy_from_host(edge_exposed_, exposed);
+  copy_from_host(joint_damage_, damage);
+}
+
 RockView RockSolver::view() {
   return {device_ptr(x_), device_ptr(y_), device_ptr(vx_), device_ptr(vy_), device_ptr(edge_exposed_),
           device_ptr(edge_pressure_), triangles_};
@@ -324,9 +354,10 @@ RockEnergies RockSolver::energies() {
     return r.area0[t] * triangle_strain_energy_density(inv, edge_matrix(p[0], p[1], p[2]), lambda, mu);
   });
   auto work_sum = [&](int c) {
-    return reduce_sum("fdem.energy.work", node_count(), 0.0, [=] BLAST_HD(index_t n) { return r.work[4 * n + c]; });
+    return reduce_sum("fdem.energy.work", node_count(), 0.0, [=] BLAST_HD(index_t n) { return r.work[kWorkKinds * n + c]; });
   };
-  e.external_work = work_sum(0) + work_sum(3);
+  e.pressure_work = work_sum(0);
+  e.external_work = e.pressure_work + work_sum(3) + work_sum(4);
   e.joint_work = work_sum(1);
   e.contact_work = work_sum(2);
   e.damping_dissipated =

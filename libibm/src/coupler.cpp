@@ -16,6 +16,12 @@ namespace {
 BLAST_HD inline int imax(int a, int b) { return a > b ? a : b; }
 BLAST_HD inline int imin(int a, int b) { return a < b ? a : b; }
 
+//! A pair of sums for device reductions (forces).
+struct Vec2Sum {
+  double x, y;
+  BLAST_HD Vec2Sum operator+(const Vec2Sum& o) const { return {x + o.x, y + o.y}; }
+};
+
 //! Marks the x-face (u) and y-face (v) points inside each triangle (docs/ibm.md "Rock -> gas": bounding-box
 //! rasterisation), keeping the highest triangle index per point.
 struct CoverKernel {
@@ -68,25 +74,93 @@ struct FaceVelocityKernel {
   }
 };
 
-//! A cell is inactive when its four face points are in rock. A cell that changes state gets the ambient
-//! state with zero derivatives (covered: the gas there is replaced by the paper's ambient gas; uncovered:
-//! new gas space opened by moving rock starts from the ambient state).
-struct CellMaskKernel {
+//! A cell is inactive when its four face points are in rock (docs/ibm.md "Rock -> gas"): the new mask.
+struct NewMaskKernel {
   Field2D<const int> u_owner, v_owner;
-  Field2D<std::uint8_t> active;
-  cip::GasStateView s;
-  cip::GasPoint ambient;
+  Field2D<std::uint8_t> new_active;
   BLAST_HD void operator()(int i, int j) const {
     const bool covered = u_owner(i, j) >= 0 && u_owner(i + 1, j) >= 0 && v_owner(i, j) >= 0 && v_owner(i, j + 1) >= 0;
-    const std::uint8_t now = covered ? 0 : 1;
-    if (now == active(i, j)) return;
-    active(i, j) = now;
-    s.rho.f(i, j) = ambient.density, s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
-    s.e.f(i, j) = ambient.internal_energy, s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
+    new_active(i, j) = covered ? 0 : 1;
   }
 };
 
-//! Pressure on each exposed rock edge: the active cell nearest to the edge's midpoint within 3 cells
+//! Moves gas between cells that change state (docs/coupling.md "Cells that change state"). A covered cell
+//! gives its mass and internal energy in equal shares to its stable edge neighbours (active before and
+//! after), or, with none (two cut cells that shared their only open face), to the stable cells of its 3 x 3
+//! block; it then holds the ambient state. An uncovered cell starts from the ambient state at rest: the gas
+//! of its neighbours flows in through the solver (splitting a neighbour's gas instead made near-vacuum
+//! chains along opening cracks, and negative densities when the hole gas arrived). Every cell computes its
+//! own new value from the old ones (a gather: no atomics, order-independent). The ledger counts the
+//! transitions and the mass and energy they create: the ambient gas of uncovered cells, minus the gas of a
+//! covered cell with no stable cell in its block. `reset` (the first call): covered cells take the ambient
+//! state, nothing moves and nothing is counted.
+struct TransitionKernel {
+  Field2D<const std::uint8_t> old_active, new_active;
+  Field2D<const double> rho, e;
+  Field2D<double> rho_next, e_next;
+  Field2D<std::uint8_t> changed;
+  double* ledger;  // 4 per cell (i + nx j)
+  int nx, ny;
+  double cell_area, rho_ambient, e_ambient;
+  bool reset;
+
+  BLAST_HD bool in_grid(int i, int j) const { return i >= 0 && i < nx && j >= 0 && j < ny; }
+  BLAST_HD bool stable(int i, int j) const { return in_grid(i, j) && old_active(i, j) && new_active(i, j); }
+  BLAST_HD bool dying(int i, int j) const { return in_grid(i, j) && old_active(i, j) && !new_active(i, j); }
+  BLAST_HD int count_stable(int i, int j) const {
+    return stable(i - 1, j) + stable(i + 1, j) + stable(i, j - 1) + stable(i, j + 1);
+  }
+  BLAST_HD int count_stable_block(int i, int j) const {
+    return count_stable(i, j) + stable(i - 1, j - 1) + stable(i + 1, j - 1) + stable(i - 1, j + 1) + stable(i + 1, j + 1);
+  }
+
+  BLAST_HD void operator()(int i, int j) const {
+    double m = rho(i, j), E = rho(i, j) * e(i, j);  // per cell area
+    bool moved = old_active(i, j) != new_active(i, j);
+    double* led = ledger + 4 * (static_cast<index_t>(j) * nx + i);
+    if (moved) {  // covered or uncovered: the ambient state
+      if (!reset) {
+        if (new_active(i, j)) {
+          led[1] += 1.0, led[2] += rho_ambient * cell_area, led[3] += rho_ambient * e_ambient * cell_area;
+        } else {
+          led[0] += 1.0;
+          if (count_stable_block(i, j) == 0) led[2] -= m * cell_area, led[3] -= E * cell_area;
+        }
+      }
+      m = rho_ambient, E = rho_ambient * e_ambient;
+    } else if (stable(i, j) && !reset) {
+      for (int nj = j - 1; nj <= j + 1; ++nj)
+        for (int ni = i - 1; ni <= i + 1; ++ni) {
+          if (!dying(ni, nj)) continue;
+          const int a = count_stable(ni, nj);       // >= 1 when this cell is its edge neighbour
+          if (a > 0 && ni != i && nj != j) continue;  // a diagonal giver only when it has no stable edge neighbour
+          const double share = 1.0 / (a > 0 ? a : count_stable_block(ni, nj));
+          m += share * rho(ni, nj);
+          E += share * rho(ni, nj) * e(ni, nj);
+          moved = true;
+        }
+    }
+    changed(i, j) = moved;
+    rho_next(i, j) = m;
+    e_next(i, j) = moved ? E / m : e(i, j);
+  }
+};
+
+//! Writes the moved gas back (derivatives of a changed cell set to zero) and installs the new mask.
+struct ApplyTransitionKernel {
+  Field2D<const std::uint8_t> new_active, changed;
+  Field2D<const double> rho_next, e_next;
+  Field2D<std::uint8_t> active;
+  cip::GasStateView s;
+  BLAST_HD void operator()(int i, int j) const {
+    active(i, j) = new_active(i, j);
+    if (!changed(i, j)) return;
+    s.rho.f(i, j) = rho_next(i, j), s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
+    s.e.f(i, j) = e_next(i, j), s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
+  }
+};
+
+//! Pressure on each exposed rock edge: the active cell nearest to the edge's midpoint within 2 cells
 //! (docs/ibm.md "Gas -> rock"; ties go to the first in scan order), else the ambient pressure.
 struct EdgePressureKernel {
   fdem::RockView rock;
@@ -102,8 +176,8 @@ struct EdgePressureKernel {
     const double mx = 0.5 * (rock.x[a] + rock.x[b]), my = 0.5 * (rock.y[a] + rock.y[b]);
     const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
     double best = 1e300, p = ambient_pressure;
-    for (int j = imax(0, cj - 3); j <= imin(g.ny - 1, cj + 3); ++j)
-      for (int i = imax(0, ci - 3); i <= imin(g.nx - 1, ci + 3); ++i) {
+    for (int j = imax(0, cj - 2); j <= imin(g.ny - 1, cj + 2); ++j)
+      for (int i = imax(0, ci - 2); i <= imin(g.nx - 1, ci + 2); ++i) {
         if (!active(i, j)) continue;
         const double dx = g.cell_x(i) - mx, dy = g.cell_y(j) - my, d = dx * dx + dy * dy;
         if (d < best) best = d, p = eos.pressure(rho(i, j), e(i, j));
@@ -119,6 +193,11 @@ GasRockCoupler::GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, cons
   const index_t n = gas_.grid().padded_shape().size();
   u_owner_.assign(n, -1);
   v_owner_.assign(n, -1);
+  new_active_.assign(n, 1);
+  changed_.assign(n, 0);
+  rho_next_.assign(n, 0.0);
+  e_next_.assign(n, 0.0);
+  ledger_.assign(4 * static_cast<index_t>(gas_.grid().nx) * gas_.grid().ny, 0.0);
 }
 
 void GasRockCoupler::rock_to_gas() {
@@ -132,7 +211,15 @@ void GasRockCoupler::rock_to_gas() {
   const cip::ImmersedBoundaryView ib = gas_.immersed_boundary();
   for_each_cell("ibm.face_velocity.u", 0, g.nx + 1, 0, g.ny, FaceVelocityKernel{rock, g, 0, uo, ib.u_prescribed, ib.u_imposed});
   for_each_cell("ibm.face_velocity.v", 0, g.nx, 0, g.ny + 1, FaceVelocityKernel{rock, g, 1, vo, ib.v_prescribed, ib.v_imposed});
-  for_each_cell("ibm.cells", 0, g.nx, 0, g.ny, CellMaskKernel{uo, vo, ib.cell_active, gas_.state(), ambient_});
+  const Field2D<std::uint8_t> fresh = make_field_view(new_active_, sh), changed = make_field_view(changed_, sh);
+  const Field2D<double> rho_next = make_field_view(rho_next_, sh), e_next = make_field_view(e_next_, sh);
+  for_each_cell("ibm.cells.mask", 0, g.nx, 0, g.ny, NewMaskKernel{uo, vo, fresh});
+  const cip::GasStateView s = gas_.state();
+  for_each_cell("ibm.cells.transition", 0, g.nx, 0, g.ny,
+                TransitionKernel{ib.cell_active, fresh, s.rho.f, s.e.f, rho_next, e_next, changed, device_ptr(ledger_),
+                                 g.nx, g.ny, g.cell_area(), ambient_.density, ambient_.internal_energy, !masks_set_});
+  for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny, ApplyTransitionKernel{fresh, changed, rho_next, e_next, ib.cell_active, s});
+  masks_set_ = true;
   gas_.apply_boundaries();
 }
 
@@ -155,6 +242,38 @@ void GasRockCoupler::step(double dt) {
 }
 
 double GasRockCoupler::stable_dt(double courant) { return std::min(gas_.courant_dt(courant), rock_.stable_dt()); }
+
+namespace {
+//! Force of the edge pressures on the rock [N/m]: p L along the inward normal of every exposed edge.
+struct EdgeForceOf {
+  fdem::RockView rock;
+  BLAST_HD Vec2Sum operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    if (!rock.edge_exposed[s]) return {0, 0};
+    const int t = s / 3, a = s, b = 3 * t + (s % 3 + 1) % 3;
+    const double p = rock.edge_pressure[s];  // nodes counter-clockwise: (-dy, dx) points into the triangle
+    return {-p * (rock.y[b] - rock.y[a]), p * (rock.x[b] - rock.x[a])};
+  }
+};
+}  // namespace
+
+CouplingDiagnostics GasRockCoupler::diagnostics() {
+  CouplingDiagnostics d;
+  const Vec2Sum f = reduce_sum("ibm.gas_force", 3 * static_cast<index_t>(rock_.triangle_count()), Vec2Sum{0, 0},
+                               EdgeForceOf{rock_.view()});
+  d.gas_force_on_rock = {f.x, f.y};
+  d.gas_work_on_rock = rock_.energies().pressure_work;
+  const double* led = device_ptr(ledger_);
+  auto total = [&](int c) {
+    return reduce_sum("ibm.ledger", static_cast<index_t>(ledger_.size() / 4), 0.0,
+                      [=] BLAST_HD(index_t k) { return led[4 * k + c]; });
+  };
+  d.transitions.covered = std::lround(total(0));
+  d.transitions.uncovered = std::lround(total(1));
+  d.transitions.mass_created = total(2);
+  d.transitions.energy_created = total(3);
+  return d;
+}
 
 long GasRockCoupler::inactive_cells() {
   const cip::GasGrid g = gas_.grid();

@@ -53,7 +53,8 @@ class GasSolver {
   //! Advances one step of dt [s]: ghosts, P = p + q, non-advection, derivative update, CIP advection.
   void step(double dt);
 
-  GasTotals totals();
+  //! Totals over the active cells whose centres lie in `region` (default: the whole grid).
+  GasTotals totals(const CellRegion& region = {});
   //! Cumulative flow out through the outer boundary since initialise() (accumulated every step).
   const BoundaryOutflow& boundary_outflow() const { return outflow_; }
   //! Samples the gas at host points [m] (a device gather; cost independent of the grid size).

@@ -67,6 +67,22 @@ struct GasTotals {
   double total_energy() const { return internal_energy + kinetic_energy; }
 };
 
+//! A region of the grid selected by cell centre, for totals over part of the domain: a circle, an
+//! axis-aligned box, or everything [m].
+struct CellRegion {
+  enum class Shape : int { all, circle, box } shape = Shape::all;
+  double x0 = 0, y0 = 0;  //!< circle centre, or box lower-left corner [m]
+  double x1 = 0, y1 = 0;  //!< box upper-right corner [m]
+  double radius = 0;      //!< circle radius [m]
+  static CellRegion circle(double cx, double cy, double r) { return {Shape::circle, cx, cy, 0, 0, r}; }
+  static CellRegion box(double xa, double ya, double xb, double yb) { return {Shape::box, xa, ya, xb, yb, 0}; }
+  BLAST_HD bool contains(double x, double y) const {
+    if (shape == Shape::circle) return (x - x0) * (x - x0) + (y - y0) * (y - y0) <= radius * radius;
+    if (shape == Shape::box) return x >= x0 && x <= x1 && y >= y0 && y <= y1;
+    return true;
+  }
+};
+
 //! What has left the domain through its outer boundary since initialise(), per unit depth (negative:
 //! entered). Mass, momentum and energy carried by the flow plus the pressure force and work at the
 //! boundary faces; with the totals it closes the balance of the whole domain (the per-step monitor).

@@ -35,8 +35,10 @@ NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h);
 //! Disc of radius r centred at (cx, cy); group outer. `embedded`: segments (chords, with their ends on the
 //! circle) that the mesh must follow, so that a row of joints lies exactly along each.
 NamedMesh gmsh_disc(double cx, double cy, double r, double h, const std::vector<Segment>& embedded = {});
-//! Disc of radius r with a concentric circular hole of radius r_hole; groups outer, hole.
-NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, double h);
+//! Disc of radius r with a concentric circular hole of radius r_hole; groups outer, hole. `embedded`
+//! segments (e.g. a pre-cut radial crack from the hole) become lines of the mesh.
+NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, double h,
+                              const std::vector<Segment>& embedded = {});
 //! Rectangle with a circular hole (centre (cx, cy), radius r_hole) inside it; groups left, right, bottom,
 //! top, hole.
 NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, double cx, double cy, double r_hole,

@@ -60,6 +60,11 @@ class RockSolver {
   void set_velocities(const std::vector<double>& vxy);
   //! Pressure [Pa] on the given edge slots (the rest keep theirs); pushes into the rock.
   void set_edge_pressure(const std::vector<int>& slots, double pressure);
+  //! Joints (indices) whose two ends lie within `tolerance` [m] of the segment (xa, ya)-(xb, yb) in the
+  //! initial mesh: the joints along a straight line of the mesh, e.g. a pre-cut crack.
+  std::vector<int> joints_on_segment(double xa, double ya, double xb, double yb, double tolerance) const;
+  //! Breaks the given joints now (a pre-cut crack): damage 1, no cohesion, both faces exposed to the gas.
+  void break_joints(const std::vector<int>& joints);
   //! Multiplier of every edge pressure (a load ramp), 1 by default.
   void set_pressure_scale(double s) { pressure_scale_ = s; }
 
@@ -105,7 +110,7 @@ class RockSolver {
   DeviceVector<double> f_pres_x_, f_pres_y_;                    // pressure loads per node (triangle phase)
   DeviceVector<std::uint8_t> constraint_;                      // bit 0: x prescribed, bit 1: y prescribed
   DeviceVector<double> v_prescribed_;                           // 2 per node
-  DeviceVector<double> work_;                                   // 4 per node: external, joint, contact, support
+  DeviceVector<double> work_;  // kWorkKinds per node: pressure, joint, contact, support, gravity
   DeviceVector<double> support_;                                // 2 per node: support force of the last step
   // triangles
   DeviceVector<double> inv_f0_;      // 4 per triangle

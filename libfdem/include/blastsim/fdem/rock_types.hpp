@@ -8,6 +8,9 @@
 
 namespace blastsim::fdem {
 
+//! Kinds of work accumulated per node: pressure, joint, contact, support, gravity.
+inline constexpr int kWorkKinds = 5;
+
 //! Numerical parameters of the rock model (the physical ones are in RockMaterial).
 struct RockOptions {
   double joint_penalty_factor = 10.0;    //!< joint penalty p / E [-] (fdem.md: 10 to 100)
@@ -31,6 +34,7 @@ struct RockEnergies {
   double friction_dissipated = 0;  //!< of which dissipated by Coulomb friction
   double damping_dissipated = 0;   //!< by the triangles' viscous damping
   double external_work = 0;        //!< of pressures, gravity and prescribed-velocity supports
+  double pressure_work = 0;        //!< of the edge pressures alone (in a coupled run: the gas's work on the rock)
   int broken_joints = 0;
   double crack_length = 0;         //!< total length of broken joints [m]
 };

@@ -10,22 +10,43 @@
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 
+#include <array>
+
 namespace blastsim::ibm {
+
+//! Cumulative effect of cells changing state (covered by rock, or uncovered) since the first rock_to_gas().
+//! A covered cell's gas moves to its active neighbours (docs/coupling.md); the ambient gas given to uncovered
+//! cells, and the gas of a covered cell with no active neighbour left, are the mass and energy counted here.
+struct CellTransitions {
+  long covered = 0;             //!< cells that became inactive
+  long uncovered = 0;           //!< cells that became active
+  double mass_created = 0;      //!< [kg/m] net mass added by these exceptions (negative: removed)
+  double energy_created = 0;    //!< [J/m] net internal energy added by them
+};
+
+//! The coupled energy budget's interface terms, per unit thickness.
+struct CouplingDiagnostics {
+  std::array<double, 2> gas_force_on_rock{};  //!< [N/m] sum over exposed edges of p L n (inward), last pressures
+  double gas_work_on_rock = 0;                //!< [J/m] cumulative work of the edge pressures on the rock
+  CellTransitions transitions;
+};
 
 class GasRockCoupler {
  public:
-  //! `ambient`: the state an inactive cell holds, and the one a cell gets when rock uncovers it (the paper:
+  //! `ambient`: the state an inactive cell holds, and the one an uncovered cell starts from (the paper:
   //! 1.2 kg/m3, 2.09e5 J/kg, at rest).
   GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, const cip::GasPoint& ambient);
 
   //! Masks and imposed velocities from the rock's current nodes. Search: each triangle visits only the
   //! velocity points in its bounding box; a point covered by several (overlapping) triangles takes the one
   //! of highest index, found with an order-independent atomic maximum, so the result is deterministic.
-  //! Cells that change state (covered or uncovered) are set to the ambient state with zero derivatives.
+  //! The first call sets every covered cell to the ambient state. Later calls keep mass and energy when
+  //! cells change state: a covered cell gives its gas in equal shares to its active edge neighbours; an
+  //! uncovered cell starts from the ambient state (counted in the transition ledger).
   void rock_to_gas();
 
-  //! Pressure [Pa] of the nearest active cell (within 3 cells of the midpoint) on every exposed edge; the
-  //! ambient pressure where none is active.
+  //! Pressure [Pa] of the nearest active cell (centre within 2 cells of the midpoint) on every exposed edge;
+  //! the ambient pressure where none is active (a closed crack: both faces get the same, which cancels).
   void gas_to_rock();
 
   //! One coupled step: rock_to_gas(), gas step, gas_to_rock(), rock step, with the same dt [s].
@@ -36,12 +57,20 @@ class GasRockCoupler {
 
   //! Number of inactive (rock-covered) cells, for diagnostics and tests.
   long inactive_cells();
+  //! Force of the gas on the rock, its cumulative work and the cell-transition ledger (device reductions).
+  CouplingDiagnostics diagnostics();
+  //! Gas mass and energy in the active cells whose centres lie in `region`.
+  cip::GasTotals gas_in(const cip::CellRegion& region) { return gas_.totals(region); }
 
  private:
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   cip::GasPoint ambient_;
+  bool masks_set_ = false;
   DeviceVector<int> u_owner_, v_owner_;  // padded shape: triangle covering each x-face / y-face point, -1: none
+  DeviceVector<std::uint8_t> new_active_, changed_;  // padded shape: mask being built, cells whose gas moved
+  DeviceVector<double> rho_next_, e_next_;           // padded shape: density and specific energy after the move
+  DeviceVector<double> ledger_;  // 4 per cell: covered, uncovered, mass created [kg/m], energy created [J/m]
 };
 
 }  // namespace blastsim::ibm
