@@ -96,7 +96,7 @@ struct NewMaskKernel {
 //! state, nothing moves and nothing is counted.
 struct TransitionKernel {
   Field2D<const std::uint8_t> old_active, new_active;
-  Field2D<const double> rho, e;
+  Field2D<const double> rho, e, u, v;
   Field2D<double> rho_next, e_next;
   Field2D<std::uint8_t> changed;
   double* ledger;  // 4 per cell (i + nx j)
@@ -113,6 +113,18 @@ struct TransitionKernel {
   BLAST_HD int count_stable_block(int i, int j) const {
     return count_stable(i, j) + stable(i - 1, j - 1) + stable(i + 1, j - 1) + stable(i - 1, j + 1) + stable(i + 1, j + 1);
   }
+  //! Gas energy per cell area [J/m3] that a covered cell (i, j) hands on: its internal energy, and the kinetic
+  //! energy that leaves the totals (GasTotals) when its faces are stopped: its own quarter of each face's
+  //! m u^2 and, across a face to a stable cell, that cell's quarter too.
+  BLAST_HD double handed_energy(int i, int j) const {
+    double k = 0;
+    auto face = [&](double w, int oi, int oj) { k += (stable(oi, oj) ? 0.5 : 0.25) * 0.5 * (rho(i, j) + rho(oi, oj)) * w * w; };
+    face(u(i, j), i - 1, j);
+    face(u(i + 1, j), i + 1, j);
+    face(v(i, j), i, j - 1);
+    face(v(i, j + 1), i, j + 1);
+    return rho(i, j) * e(i, j) + k;
+  }
 
   BLAST_HD void operator()(int i, int j) const {
     double m = rho(i, j), E = rho(i, j) * e(i, j);  // per cell area
@@ -124,7 +136,7 @@ struct TransitionKernel {
           led[1] += 1.0, led[2] += rho_ambient * cell_area, led[3] += rho_ambient * e_ambient * cell_area;
         } else {
           led[0] += 1.0;
-          if (count_stable_block(i, j) == 0) led[2] -= m * cell_area, led[3] -= E * cell_area;
+          if (count_stable_block(i, j) == 0) led[2] -= m * cell_area, led[3] -= handed_energy(i, j) * cell_area;
         }
       }
       m = rho_ambient, E = rho_ambient * e_ambient;
@@ -136,7 +148,7 @@ struct TransitionKernel {
           if (a > 0 && ni != i && nj != j) continue;  // a diagonal giver only when it has no stable edge neighbour
           const double share = 1.0 / (a > 0 ? a : count_stable_block(ni, nj));
           m += share * rho(ni, nj);
-          E += share * rho(ni, nj) * e(ni, nj);
+          E += share * handed_energy(ni, nj);
           moved = true;
         }
     }
@@ -146,13 +158,19 @@ struct TransitionKernel {
   }
 };
 
-//! Writes the moved gas back (derivatives of a changed cell set to zero) and installs the new mask.
+//! Writes the moved gas back (derivatives of a changed cell set to zero), stops the faces of covered cells
+//! (their imposed velocity; their kinetic energy went with the cell's gas) and installs the new mask. Two
+//! covered neighbours write their common face with the same value.
 struct ApplyTransitionKernel {
   Field2D<const std::uint8_t> new_active, changed;
-  Field2D<const double> rho_next, e_next;
+  Field2D<const double> rho_next, e_next, u_imposed, v_imposed;
   Field2D<std::uint8_t> active;
   cip::GasStateView s;
   BLAST_HD void operator()(int i, int j) const {
+    if (active(i, j) && !new_active(i, j)) {
+      s.u.f(i, j) = u_imposed(i, j), s.u.f(i + 1, j) = u_imposed(i + 1, j);
+      s.v.f(i, j) = v_imposed(i, j), s.v.f(i, j + 1) = v_imposed(i, j + 1);
+    }
     active(i, j) = new_active(i, j);
     if (!changed(i, j)) return;
     s.rho.f(i, j) = rho_next(i, j), s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
@@ -216,9 +234,9 @@ void GasRockCoupler::rock_to_gas() {
   for_each_cell("ibm.cells.mask", 0, g.nx, 0, g.ny, NewMaskKernel{uo, vo, fresh});
   const cip::GasStateView s = gas_.state();
   for_each_cell("ibm.cells.transition", 0, g.nx, 0, g.ny,
-                TransitionKernel{ib.cell_active, fresh, s.rho.f, s.e.f, rho_next, e_next, changed, device_ptr(ledger_),
+                TransitionKernel{ib.cell_active, fresh, s.rho.f, s.e.f, s.u.f, s.v.f, rho_next, e_next, changed, device_ptr(ledger_),
                                  g.nx, g.ny, g.cell_area(), ambient_.density, ambient_.internal_energy, !masks_set_});
-  for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny, ApplyTransitionKernel{fresh, changed, rho_next, e_next, ib.cell_active, s});
+  for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny, ApplyTransitionKernel{fresh, changed, rho_next, e_next, ib.u_imposed, ib.v_imposed, ib.cell_active, s});
   masks_set_ = true;
   gas_.apply_boundaries();
 }
