@@ -52,10 +52,7 @@ cip::BoundaryKind read_boundary(TableReader& t, const char* side) {
 
 }  // namespace
 
-CaseConfig read_case(const toml::table& input) {
-  CaseConfig c;
-  TableReader root(input, "", c.echo);
-
+void read_gas_sections(TableReader& root, CaseConfig& c) {
   TableReader domain = root.table("domain", true);
   const long long nx = domain.integer("nx", "cells", 3), ny = domain.integer("ny", "cells", 3);
   const double x0 = domain.number("x_min", "m", Range::any()), x1 = domain.number("x_max", "m", Range::above(x0));
@@ -105,17 +102,6 @@ CaseConfig read_case(const toml::table& input) {
   }
   gas.finish();
 
-  TableReader time = root.table("time", true);
-  c.end_time = time.number("end", "s", Range::positive());
-  c.fixed_dt = time.optional_number("dt", "s", Range::positive());
-  c.max_steps = time.integer("max_steps", "", 0, 0);
-  time.finish();
-
-  TableReader out = root.table("output");
-  assign_output_basics(read_output_basics(out, 1), c);
-  c.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
-  out.finish();
-
   TableReader probe = root.table("probe");
   for (TableReader& p : probe.table_array("line")) {
     LineProbe l;
@@ -136,13 +122,31 @@ CaseConfig read_case(const toml::table& input) {
     c.point_probes.push_back(q);
   }
   probe.finish();
-  auto check_name = [](const std::string& kind, const std::string& name) {
-    if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
-                            std::string::npos)
-      throw InputError(fmt::format("probe.{} name \"{}\": use letters, digits, '_' or '-' only", kind, name));
-  };
-  for (const LineProbe& l : c.line_probes) check_name("line", l.name);
-  for (const PointProbe& q : c.point_probes) check_name("point", q.name);
+  for (const LineProbe& l : c.line_probes) check_output_name("probe.line", l.name);
+  for (const PointProbe& q : c.point_probes) check_output_name("probe.point", q.name);
+}
+
+void check_output_name(const std::string& kind, const std::string& name) {
+  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                          std::string::npos)
+    throw InputError(fmt::format("{} name \"{}\": use letters, digits, '_' or '-' only", kind, name));
+}
+
+CaseConfig read_case(const toml::table& input) {
+  CaseConfig c;
+  TableReader root(input, "", c.echo);
+  read_gas_sections(root, c);
+  TableReader time = root.table("time", true);
+  c.end_time = time.number("end", "s", Range::positive());
+  c.fixed_dt = time.optional_number("dt", "s", Range::positive());
+  c.max_steps = time.integer("max_steps", "", 0, 0);
+  time.finish();
+
+  TableReader out = root.table("output");
+  assign_output_basics(read_output_basics(out, 1), c);
+  c.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
+  out.finish();
+
   root.finish();
   return c;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "case_config.hpp"
+#include "coupled_config.hpp"
 #include "rock_config.hpp"
 #include "input_reader.hpp"
 
@@ -42,11 +43,22 @@ void assign_output_basics(const OutputBasics& b, Config& c) {
 //! Parses a case file and applies the overrides (the first half of load_case()).
 toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides);
 
-//! True when the parsed input describes a rock-only case ([rock] present, no [gas]). Throws InputError for
-//! a case with both: the coupled gas-rock case is not available yet.
-bool is_rock_case(const toml::table& input);
+//! What a parsed input describes: [gas] alone, [rock] alone, or both (a coupled gas-rock case).
+enum class CaseKind { gas, rock, coupled };
+CaseKind case_kind(const toml::table& input);
 
 //! Reads and validates a rock-only case; InputError names the key, the value and what is allowed.
 RockCaseConfig read_rock_case(const toml::table& input);
+
+//! Reads and validates a coupled case: [domain], [gas], [probe] as for gas cases, [rock] as for rock cases
+//! (no [[rock.pressure]]: the gas loads the rock), [time], [output] and [[monitor.region]].
+CoupledCaseConfig read_coupled_case(const toml::table& input);
+
+//! The sections of one solver, read through a caller's root table (so a coupled case can read both).
+void read_gas_sections(TableReader& root, CaseConfig& c);   //!< [domain], [gas], [probe]
+void read_rock_section(TableReader& root, RockCaseConfig& c);  //!< [rock]
+
+//! Throws InputError unless `name` (used in file names) is letters, digits, '_' and '-'.
+void check_output_name(const std::string& kind, const std::string& name);
 
 }  // namespace blastsim::app

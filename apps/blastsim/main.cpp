@@ -3,6 +3,7 @@
 #include "blastsim/core/error.hpp"
 #include "blastsim/core/macros.hpp"
 #include "case_input.hpp"
+#include "coupled_run.hpp"
 #include "gas_run.hpp"
 #include "rock_run.hpp"
 
@@ -11,8 +12,14 @@
 
 #include <iostream>
 
+namespace {
+const std::string& config_directory(const blastsim::app::CoupledCaseConfig& c) { return c.gas.output_directory; }
+template <class Config>
+const std::string& config_directory(const Config& c) { return c.output_directory; }
+}  // namespace
+
 int main(int argc, char** argv) {
-  CLI::App cli{"blastsim: 2-D rock-blasting simulator (CIP gas or FDEM rock cases; the coupling comes next)"};
+  CLI::App cli{"blastsim: 2-D rock-blasting simulator (CIP gas, FDEM rock, or both coupled by immersed boundaries)"};
   std::string input;
   std::vector<std::string> overrides;
   bool quiet = false, check_only = false;
@@ -30,18 +37,16 @@ int main(int argc, char** argv) {
                                backend_name(), input);
       for (const std::string& line : lines) std::cout << "  " << line << "\n";
     };
-    if (app::is_rock_case(table)) {
-      const app::RockCaseConfig config = app::read_rock_case(table);
+    auto run = [&](const auto& config, auto runner) {
       echo(config.echo);
-      if (check_only) return 0;
-      app::run_rock_case(config, std::cout, app::RunOptions{quiet});
-      std::cout << "done; results in " << config.output_directory << "\n";
-    } else {
-      const app::CaseConfig config = app::read_case(table);
-      echo(config.echo);
-      if (check_only) return 0;
-      app::run_gas_case(config, std::cout, app::RunOptions{quiet});
-      std::cout << "done; results in " << config.output_directory << "\n";
+      if (check_only) return;
+      runner(config, std::cout, app::RunOptions{quiet});
+      std::cout << "done; results in " << config_directory(config) << "\n";
+    };
+    switch (app::case_kind(table)) {
+      case app::CaseKind::rock: run(app::read_rock_case(table), app::run_rock_case); break;
+      case app::CaseKind::coupled: run(app::read_coupled_case(table), app::run_coupled_case); break;
+      case app::CaseKind::gas: run(app::read_case(table), app::run_gas_case); break;
     }
   } catch (const InputError& e) {
     std::cerr << "input error: " << e.what() << "\n";

@@ -9,12 +9,9 @@
 
 namespace blastsim::app {
 
-bool is_rock_case(const toml::table& input) {
+CaseKind case_kind(const toml::table& input) {
   const bool rock = input.contains("rock"), gas = input.contains("gas");
-  if (rock && gas)
-    throw InputError("the case has both [gas] and [rock]: coupled gas-rock cases are not available yet "
-                     "(give one of the two)");
-  return rock;
+  return rock && gas ? CaseKind::coupled : (rock ? CaseKind::rock : CaseKind::gas);
 }
 
 namespace {
@@ -65,9 +62,7 @@ RockMeshSpec read_mesh(TableReader& t) {
 
 }  // namespace
 
-RockCaseConfig read_rock_case(const toml::table& input) {
-  RockCaseConfig c;
-  TableReader root(input, "", c.echo);
+void read_rock_section(TableReader& root, RockCaseConfig& c) {
   TableReader rock = root.table("rock", true);
   c.material = read_material(rock);
   c.options.joint_penalty_factor = rock.number("joint_penalty_factor", "", Range::positive(), 10.0);
@@ -99,6 +94,14 @@ RockCaseConfig read_rock_case(const toml::table& input) {
     c.pressures.push_back(l);
   }
   rock.finish();
+  c.material.validate();
+  c.options.validate();
+}
+
+RockCaseConfig read_rock_case(const toml::table& input) {
+  RockCaseConfig c;
+  TableReader root(input, "", c.echo);
+  read_rock_section(root, c);
 
   TableReader time = root.table("time", true);
   c.end_time = time.number("end", "s", Range::positive());
@@ -110,8 +113,53 @@ RockCaseConfig read_rock_case(const toml::table& input) {
   assign_output_basics(read_output_basics(out, 10), c);
   out.finish();
   root.finish();
-  c.material.validate();
-  c.options.validate();
+  return c;
+}
+
+CoupledCaseConfig read_coupled_case(const toml::table& input) {
+  CoupledCaseConfig c;
+  TableReader root(input, "", c.echo);
+  read_gas_sections(root, c.gas);
+  read_rock_section(root, c.rock);
+  if (!c.rock.pressures.empty())
+    throw InputError("rock.pressure: a coupled case loads the rock with the gas only; remove the [[rock.pressure]] "
+                     "tables (or run the rock alone)");
+  if (c.rock.pressure_ramp_time > 0)
+    throw InputError("rock.pressure_ramp_time: not used in a coupled case (the gas loads the rock); remove it");
+
+  TableReader time = root.table("time", true);
+  c.gas.end_time = c.rock.end_time = time.number("end", "s", Range::positive());
+  c.gas.fixed_dt = c.rock.fixed_dt = time.optional_number("dt", "s", Range::positive());
+  c.rock.step_fraction = time.number("step_fraction", "", Range::half_open(0.0, 1.0), 0.9);
+  c.gas.max_steps = time.integer("max_steps", "", 0, 0);
+  time.finish();
+
+  TableReader out = root.table("output");
+  const OutputBasics basics = read_output_basics(out, 10);
+  assign_output_basics(basics, c.gas);
+  assign_output_basics(basics, c.rock);
+  c.gas.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
+  out.finish();
+
+  TableReader monitor = root.table("monitor");
+  for (TableReader& r : monitor.table_array("region")) {
+    MonitorRegion m;
+    m.name = r.text("name", {});
+    const std::string shape = r.text("shape", {"box", "circle"});
+    if (shape == "circle") {
+      const std::array<double, 2> centre = r.pair("center", "m");
+      m.region = cip::CellRegion::circle(centre[0], centre[1], r.number("radius", "m", Range::positive()));
+    } else {
+      const std::array<double, 2> lo = r.pair("min", "m"), hi = r.pair("max", "m");
+      if (!(hi[0] > lo[0]) || !(hi[1] > lo[1])) throw InputError(fmt::format("{}: box needs max > min in x and y", r.path()));
+      m.region = cip::CellRegion::box(lo[0], lo[1], hi[0], hi[1]);
+    }
+    r.finish();
+    check_output_name("monitor.region", m.name);
+    c.regions.push_back(m);
+  }
+  monitor.finish();
+  root.finish();
   return c;
 }
 

@@ -193,8 +193,8 @@ struct JointForceKernel {
     }
     if (broken_points >= 2) {
       r.joint_broken[j] = 1;
-      r.edge_exposed[a0] = 1;
-      r.edge_exposed[b0] = 1;
+      r.edge_exposed[a0] = kEdgeCrackFace;
+      r.edge_exposed[b0] = kEdgeCrackFace;
       for (int c = 0; c < 4; ++c) fa[c] = fb[c] = 0.0;
       return;
     }

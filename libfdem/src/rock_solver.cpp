@@ -101,7 +101,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
 
   std::vector<int> slot_neighbour(3 * triangles_, -1), slot_joint(3 * triangles_, -1);
   std::vector<std::uint8_t> exposed(3 * triangles_, 0);
-  for (const BoundaryEdge& b : boundary_edges_) exposed[b.n0] = 1;
+  for (const BoundaryEdge& b : boundary_edges_) exposed[b.n0] = kEdgeBoundary;
   std::vector<int> joint_nodes(4 * joints_);
   std::vector<double> strength(8 * joints_);
   const double p_joint = options_.joint_penalty_factor * E;
@@ -327,8 +327,8 @@ void RockSolver::break_joints(const std::vector<int>& joints) {
     if (j < 0 || j >= joints_) throw InputError("joint " + std::to_string(j) + " does not exist");
     broken[j] = 1;
     for (int q = 0; q < 3; ++q) damage[3 * j + q] = 1.0;
-    exposed[joint_nodes_host_[j][0]] = 1;  // face A's slot (its first node)
-    exposed[joint_nodes_host_[j][2]] = 1;  // face B's slot
+    exposed[joint_nodes_host_[j][0]] = kEdgeCrackFace;  // face A's slot (its first node)
+    exposed[joint_nodes_host_[j][2]] = kEdgeCrackFace;  // face B's slot
   }
   copy_from_host(joint_broken_, broken);
   copy_from_host(edge_exposed_, exposed);

@@ -85,8 +85,8 @@ struct NewMaskKernel {
 };
 
 //! Moves gas between cells that change state (docs/coupling.md "Cells that change state"). A covered cell
-//! gives its mass and internal energy in equal shares to its stable edge neighbours (active before and
-//! after), or, with none (two cut cells that shared their only open face), to the stable cells of its 3 x 3
+//! gives its mass and energy (internal, and the kinetic energy of its faces: handed_energy()) in equal shares
+//! to its stable edge neighbours (active before and after), or, with none (two cut cells that shared their only open face), to the stable cells of its 3 x 3
 //! block; it then holds the ambient state. An uncovered cell starts from the ambient state at rest: the gas
 //! of its neighbours flows in through the solver (splitting a neighbour's gas instead made near-vacuum
 //! chains along opening cracks, and negative densities when the hole gas arrived). Every cell computes its
@@ -178,8 +178,12 @@ struct ApplyTransitionKernel {
   }
 };
 
-//! Pressure on each exposed rock edge: the active cell nearest to the edge's midpoint within 2 cells
-//! (docs/ibm.md "Gas -> rock"; ties go to the first in scan order), else the ambient pressure.
+//! Pressure on each exposed rock edge (docs/coupling.md "Gas -> rock"). The cell the edge faces (the one
+//! holding the point a hundredth of a cell off the midpoint along the outward normal) gives its pressure when
+//! it is active. Otherwise a boundary edge takes the active cell nearest to its midpoint within 2 cells (the
+//! paper's rule; ties go to the first in scan order) and a crack face the ambient pressure: a crack narrower
+//! than the grid holds no gas, and loading its faces with the pressure of a cell beside it would do work
+//! that no gas pays for (both faces of a closed crack get the same pressure, which cancels).
 struct EdgePressureKernel {
   fdem::RockView rock;
   cip::GasGrid g;
@@ -189,17 +193,27 @@ struct EdgePressureKernel {
   double ambient_pressure;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    if (!rock.edge_exposed[s]) return;
+    const std::uint8_t kind = rock.edge_exposed[s];
+    if (kind == fdem::kEdgeInside) return;
     const int t = s / 3, a = s, b = 3 * t + (s % 3 + 1) % 3;
     const double mx = 0.5 * (rock.x[a] + rock.x[b]), my = 0.5 * (rock.y[a] + rock.y[b]);
-    const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
-    double best = 1e300, p = ambient_pressure;
-    for (int j = imax(0, cj - 2); j <= imin(g.ny - 1, cj + 2); ++j)
-      for (int i = imax(0, ci - 2); i <= imin(g.nx - 1, ci + 2); ++i) {
-        if (!active(i, j)) continue;
-        const double dx = g.cell_x(i) - mx, dy = g.cell_y(j) - my, d = dx * dx + dy * dy;
-        if (d < best) best = d, p = eos.pressure(rho(i, j), e(i, j));
-      }
+    const double ex = rock.x[b] - rock.x[a], ey = rock.y[b] - rock.y[a], len = sqrt(ex * ex + ey * ey);
+    const double off = 0.01 * fmin(g.dx, g.dy) / len;  // outward normal of a counter-clockwise edge: (ey, -ex)
+    const int fi = static_cast<int>(floor((mx + off * ey - g.x_min) / g.dx));
+    const int fj = static_cast<int>(floor((my - off * ex - g.y_min) / g.dy));
+    double p = ambient_pressure;
+    if (fi >= 0 && fi < g.nx && fj >= 0 && fj < g.ny && active(fi, fj)) {
+      p = eos.pressure(rho(fi, fj), e(fi, fj));
+    } else if (kind == fdem::kEdgeBoundary) {
+      const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
+      double best = 1e300;
+      for (int j = imax(0, cj - 2); j <= imin(g.ny - 1, cj + 2); ++j)
+        for (int i = imax(0, ci - 2); i <= imin(g.nx - 1, ci + 2); ++i) {
+          if (!active(i, j)) continue;
+          const double dx = g.cell_x(i) - mx, dy = g.cell_y(j) - my, d = dx * dx + dy * dy;
+          if (d < best) best = d, p = eos.pressure(rho(i, j), e(i, j));
+        }
+    }
     rock.edge_pressure[s] = p;
   }
 };

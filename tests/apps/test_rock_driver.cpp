@@ -77,10 +77,11 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   CHECK_THROWS_WITH(read({"rock.mesh.elements=3"}), Catch::Contains("rock.mesh.elements"));
   CHECK_THROWS_WITH(read({"rock.damping_ratio=1.5"}), Catch::Contains("rock.damping_ratio"));
   CHECK_THROWS_WITH(read({"rock.velocity.0.components=\"z\""}), Catch::Contains("rock.velocity.0.components"));
-  // A case with both gas and rock is refused (coupling comes with the coupling issue).
+  // A case with both gas and rock is a coupled case.
   toml::table both = app::load_input(example, {});
+  CHECK(app::case_kind(both) == app::CaseKind::rock);
   both.insert("gas", toml::table{});
-  CHECK_THROWS_WITH(app::is_rock_case(both), Catch::Contains("coupled"));
+  CHECK(app::case_kind(both) == app::CaseKind::coupled);
   // Run-time checks: unknown boundary group, a fixed dt above the stable step.
   std::ostringstream log;
   app::RockCaseConfig c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh_dir("bad").string() + "\""});

@@ -29,7 +29,7 @@ struct RockView {
   const double* y;
   const double* vx;
   const double* vy;
-  const std::uint8_t* edge_exposed;  //!< per edge slot: 1 if the edge faces gas (boundary or broken joint)
+  const std::uint8_t* edge_exposed;  //!< per edge slot: kEdgeInside, kEdgeBoundary or kEdgeCrackFace
   double* edge_pressure;             //!< per edge slot [Pa], read by the next step
   int triangles;
 };

@@ -8,6 +8,9 @@
 
 namespace blastsim::fdem {
 
+//! Values of RockSolver::edge_exposed(): not exposed, a mesh boundary edge, a face of a broken joint.
+inline constexpr std::uint8_t kEdgeInside = 0, kEdgeBoundary = 1, kEdgeCrackFace = 2;
+
 //! Kinds of work accumulated per node: pressure, joint, contact, support, gravity.
 inline constexpr int kWorkKinds = 5;
 

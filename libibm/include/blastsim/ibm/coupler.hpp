@@ -45,8 +45,9 @@ class GasRockCoupler {
   //! uncovered cell starts from the ambient state (counted in the transition ledger).
   void rock_to_gas();
 
-  //! Pressure [Pa] of the nearest active cell (centre within 2 cells of the midpoint) on every exposed edge;
-  //! the ambient pressure where none is active (a closed crack: both faces get the same, which cancels).
+  //! Pressure [Pa] on every exposed edge: that of the active cell the edge faces; where that cell is inactive,
+  //! a boundary edge takes the nearest active cell within 2 cells (the paper's rule) and a crack face the
+  //! ambient pressure (a crack narrower than the grid holds no gas).
   void gas_to_rock();
 
   //! One coupled step: rock_to_gas(), gas step, gas_to_rock(), rock step, with the same dt [s].

@@ -1,0 +1,27 @@
+//! \file coupled_config.hpp
+//! \brief The driver's coupled gas-rock case: a gas case and a rock case sharing time and output; plain data.
+#pragma once
+
+#include "blastsim/cip/gas_types.hpp"
+#include "case_config.hpp"
+#include "rock_config.hpp"
+
+#include <string>
+#include <vector>
+
+namespace blastsim::app {
+
+//! A region of the gas whose mass and energy the coupled run writes to coupling_series.csv.
+struct MonitorRegion {
+  std::string name;
+  cip::CellRegion region;
+};
+
+struct CoupledCaseConfig {
+  CaseConfig gas;       //!< [domain], [gas], [probe]; time and output fields copied from [time], [output]
+  RockCaseConfig rock;  //!< [rock]; time and output fields copied likewise
+  std::vector<MonitorRegion> regions;  //!< [[monitor.region]]
+  std::vector<std::string> echo;
+};
+
+}  // namespace blastsim::app

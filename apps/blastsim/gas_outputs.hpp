@@ -1,0 +1,185 @@
+//! \file gas_outputs.hpp
+//! \brief What a driver run writes about the gas: VTK snapshots, line and point probes, the conservation
+//! monitor (gas_totals.csv); shared by gas-only and coupled runs. Include only from kernel sources.
+#pragma once
+
+#include "blastsim/cip/gas_solver.hpp"
+#include "blastsim/core/error.hpp"
+#include "case_config.hpp"
+#include "output_files.hpp"
+#include "vtk_gas_writer.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace blastsim::app {
+
+//! "hh:mm:ss" of a duration in seconds, for progress lines.
+inline std::string hms(double seconds) {
+  const long s = static_cast<long>(std::lround(std::max(seconds, 0.0)));
+  return fmt::format("{:02d}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
+}
+
+//! One progress line: step, time, dt, fraction done, elapsed and estimated remaining wall time, `extra`.
+inline std::string progress_line(long long step, double t, double dt, double end, double elapsed, const std::string& extra) {
+  const double frac = t / end;
+  return fmt::format("step {:>8}  t = {:.4e} s  dt = {:.3e} s  {:5.1f} %  elapsed {}  left {}{}\n", step, t, dt,
+                     100 * frac, hms(elapsed), hms(elapsed * (1 - frac) / frac), extra);
+}
+
+//! Throws InputError when a fixed dt [s] violates the Courant limit at the gas's signal rate [1/s].
+inline void check_fixed_dt_courant(double dt, double rate, double courant, const cip::GasSolver& solver) {
+  if (dt * rate > courant)
+    throw InputError(fmt::format("time.dt = {:g} s violates the Courant limit at step {} (t = {:.6e} s): Courant "
+                                 "number {:.4g} > gas.courant = {:g}; the largest stable dt now is {:.4g} s",
+                                 dt, solver.steps() + 1, solver.time(), dt * rate, courant, courant / rate));
+}
+
+//! The gas's signal rate [1/s] for the next dt; an invalid state (+inf) stops the run with InstabilityError
+//! naming the quantity, step and place, before that state is written anywhere.
+inline double checked_signal_rate(cip::GasSolver& solver, const std::string& output_directory) {
+  const double r = solver.max_signal_rate();
+  if (!std::isfinite(r))
+    throw InstabilityError(fmt::format("gas state invalid after step {} (t = {:.6e} s): {}; the last good output is in {}",
+                                       solver.steps(), solver.time(), solver.describe_invalid_cell(), output_directory));
+  return r;
+}
+
+//! Output state of one run: files, schedules and open CSV streams.
+class GasOutputs {
+ public:
+  //! `gas_alone`: false in a coupled run, where the gas exchanges energy with the rock, so only the mass
+  //! balance of gas_totals.csv is watched (the coupled budget is in coupling_series.csv).
+  GasOutputs(const CaseConfig& c, cip::GasSolver& solver, std::ostream& log, bool gas_alone = true)
+      : c_(c), solver_(solver), log_(log), gas_alone_(gas_alone), dir_(c.output_directory), pvd_((dir_ / "gas.pvd").string()) {
+    std::filesystem::create_directories(dir_);
+    totals_.open(dir_ / "gas_totals.csv", std::ios::trunc);
+    totals_ << "step,time_s,dt_s,mass_kg_per_m,momentum_x_kg_per_s,momentum_y_kg_per_s,internal_energy_J_per_m,"
+               "kinetic_energy_J_per_m,total_energy_J_per_m,mass_out_kg_per_m,momentum_x_out_kg_per_s,"
+               "momentum_y_out_kg_per_s,energy_out_J_per_m,mass_balance_drift,energy_balance_drift\n";
+    for (const PointProbe& p : c.point_probes) {
+      point_files_.emplace_back(dir_ / fmt::format("point_{}.csv", p.name), std::ios::trunc);
+      point_files_.back() << "t,x,y,rho,u,v,p,e\n";
+      next_point_.push_back(0.0);
+    }
+    for (size_t k = 0; k < c.line_probes.size(); ++k) line_done_.emplace_back(c.line_probes[k].times.size(), false);
+  }
+
+  //! Earliest pending event time after t (snapshot, line probe, end), for the Courant-mode dt clip.
+  double next_event(double t) const {
+    double next = c_.end_time;
+    if (c_.output_interval > 0) next = std::min(next, next_snapshot_);
+    for (size_t k = 0; k < c_.line_probes.size(); ++k)
+      for (size_t m = 0; m < c_.line_probes[k].times.size(); ++m)
+        if (!line_done_[k][m] && c_.line_probes[k].times[m] > t) next = std::min(next, c_.line_probes[k].times[m]);
+    return next;
+  }
+
+  //! Writes whatever is due at the solver's current time (force: snapshot regardless of schedule).
+  //! Returns true when a snapshot was due (and written, when output.vtk).
+  bool write_due(double dt, bool force_snapshot) {
+    const double t = solver_.time(), tol = 1e-9 * c_.end_time;
+    const bool snapshot_due = force_snapshot || (c_.output_interval > 0 && t >= next_snapshot_ - tol);
+    if (snapshot_due) {
+      snapshot();
+      if (c_.output_interval > 0)
+        while (next_snapshot_ <= t + tol) next_snapshot_ += c_.output_interval;
+    }
+    for (size_t k = 0; k < c_.line_probes.size(); ++k)
+      for (size_t m = 0; m < c_.line_probes[k].times.size(); ++m)
+        if (!line_done_[k][m] && c_.line_probes[k].times[m] <= t + tol) {
+          write_line(c_.line_probes[k], m);
+          line_done_[k][m] = true;
+        }
+    sample_points(t);
+    if (solver_.steps() % c_.monitor_interval == 0 || force_snapshot) monitor(dt);
+    return snapshot_due;
+  }
+
+ private:
+  void snapshot() {
+    if (!c_.vtk) return;
+    const std::string name = fmt::format("gas_{:06d}.vti", snapshot_index_++);
+    write_gas_vti((dir_ / name).string(), solver_.grid(), solver_.to_host());
+    pvd_.add(solver_.time(), name);
+  }
+  void write_line(const LineProbe& l, size_t m) {
+    std::vector<std::array<double, 2>> pts(l.points);
+    for (int k = 0; k < l.points; ++k) {
+      const double s = static_cast<double>(k) / (l.points - 1);
+      pts[k] = {l.start[0] + s * (l.end[0] - l.start[0]), l.start[1] + s * (l.end[1] - l.start[1])};
+    }
+    const std::vector<cip::GasSample> smp = solver_.sample(pts);
+    write_atomically((dir_ / fmt::format("line_{}_{:03d}.csv", l.name, m)).string(), [&](std::ostream& out) {
+      out << "x,y,rho,u,v,p,e\n";
+      for (const cip::GasSample& g : smp)
+        out << fmt::format("{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", g.x, g.y, g.rho, g.u, g.v, g.p, g.e);
+    });
+  }
+  void sample_points(double t) {
+    std::vector<std::array<double, 2>> pts;
+    std::vector<size_t> which;
+    for (size_t k = 0; k < c_.point_probes.size(); ++k)
+      if (t >= next_point_[k] - 1e-12 * c_.end_time) {
+        pts.push_back(c_.point_probes[k].position);
+        which.push_back(k);
+        while (next_point_[k] <= t) next_point_[k] += c_.point_probes[k].interval;
+      }
+    if (pts.empty()) return;
+    const std::vector<cip::GasSample> smp = solver_.sample(pts);
+    for (size_t m = 0; m < smp.size(); ++m) {
+      const cip::GasSample& g = smp[m];
+      point_files_[which[m]] << fmt::format("{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", t, g.x, g.y,
+                                            g.rho, g.u, g.v, g.p, g.e)
+                             << std::flush;
+    }
+  }
+  //! The conservation monitor: totals in the domain, what crossed the outer boundary, and the relative
+  //! drift of the balance (in domain + out - initial) / initial; a warning when it exceeds the threshold.
+  void monitor(double dt) {
+    const cip::GasTotals s = solver_.totals();
+    const cip::BoundaryOutflow& o = solver_.boundary_outflow();
+    if (solver_.steps() == 0) initial_ = s;
+    const double mass_drift = (s.mass + o.mass) / initial_.mass - 1;
+    const double energy_drift = (s.total_energy() + o.energy) / initial_.total_energy() - 1;
+    totals_ << fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
+                           "{:.12e},{:.6e},{:.6e}\n",
+                           solver_.steps(), solver_.time(), dt, s.mass, s.momentum_x, s.momentum_y, s.internal_energy,
+                           s.kinetic_energy, s.total_energy(), o.mass, o.momentum_x, o.momentum_y, o.energy,
+                           mass_drift, energy_drift)
+            << std::flush;
+    warn_once(mass_warned_, "mass", mass_drift);
+    if (gas_alone_) warn_once(energy_warned_, "energy", energy_drift);
+  }
+  void warn_once(bool& warned, const char* what, double drift) {
+    if (warned || !(std::fabs(drift) > c_.drift_warning)) return;
+    warned = true;
+    log_ << fmt::format("warning: {} balance drifted by {:+.3e} (> output.drift_warning = {:g}) at step {} "
+                        "(t = {:.6e} s); gas_totals.csv has the history\n",
+                        what, drift, c_.drift_warning, solver_.steps(), solver_.time());
+  }
+
+  const CaseConfig& c_;
+  cip::GasSolver& solver_;
+  std::ostream& log_;
+  bool gas_alone_;
+  cip::GasTotals initial_;
+  bool mass_warned_ = false, energy_warned_ = false;
+  std::filesystem::path dir_;
+  PvdSeries pvd_;
+  std::ofstream totals_;
+  std::vector<std::ofstream> point_files_;
+  std::vector<double> next_point_;
+  std::vector<std::vector<bool>> line_done_;
+  double next_snapshot_ = 0.0;
+  int snapshot_index_ = 0;
+};
+
+}  // namespace blastsim::app

@@ -1,0 +1,121 @@
+//! \file rock_outputs.cpp
+//! \brief Rock model set-up from a case, and the rock's output files (VTU series, energy series).
+#include "rock_outputs.hpp"
+
+#include "blastsim/core/error.hpp"
+#include "vtk_rock_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace blastsim::app {
+
+namespace {
+
+fdem::NamedMesh make_mesh(const RockMeshSpec& s) {
+  const double h = s.element_size;
+  if (s.shape == "rectangle") return fdem::gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h);
+  if (s.shape == "disc") return fdem::gmsh_disc(s.center[0], s.center[1], s.radius, h);
+  if (s.shape == "disc_with_hole") return fdem::gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
+  if (s.shape == "rectangle_with_hole")
+    return fdem::gmsh_rectangle_with_hole(s.min[0], s.min[1], s.max[0], s.max[1], s.center[0], s.center[1],
+                                          s.hole_radius, h);
+  return fdem::read_gmsh_file(s.file);
+}
+
+//! Nodes whose initial position lies in the load's box.
+std::vector<int> nodes_in_box(const fdem::FdemTopology& topo, const VelocityLoad& l) {
+  std::vector<int> nodes;
+  for (size_t n = 0; n < topo.node_positions.size(); ++n) {
+    const auto& p = topo.node_positions[n];
+    if (p[0] >= l.min[0] && p[0] <= l.max[0] && p[1] >= l.min[1] && p[1] <= l.max[1]) nodes.push_back(static_cast<int>(n));
+  }
+  return nodes;
+}
+
+}  // namespace
+
+RockModel make_rock_model(const RockCaseConfig& c, bool apply_pressures) {
+  RockModel m;
+  m.mesh = make_mesh(c.mesh);
+  m.topology = fdem::build_topology(m.mesh.mesh);
+  m.solver = std::make_unique<fdem::RockSolver>(m.topology, c.material, c.options);
+  fdem::RockSolver& solver = *m.solver;
+  const fdem::FdemTopology& topo = m.topology;
+  const fdem::NamedMesh& mesh = m.mesh;
+  // Loads. Initial velocities first: prescribed velocities then override them on their nodes.
+  if (c.initial_velocity[0] != 0 || c.initial_velocity[1] != 0) {
+    std::vector<double> v(2 * solver.node_count());
+    for (int n = 0; n < solver.node_count(); ++n) v[2 * n] = c.initial_velocity[0], v[2 * n + 1] = c.initial_velocity[1];
+    solver.set_velocities(v);
+  }
+  for (size_t k = 0; k < c.velocities.size(); ++k) {
+    const VelocityLoad& l = c.velocities[k];
+    const std::vector<int> nodes = nodes_in_box(topo, l);
+    if (nodes.empty())
+      throw InputError(fmt::format("rock.velocity.{}: no mesh node lies in the box [{}, {}] x [{}, {}] m", k, l.min[0],
+                                   l.max[0], l.min[1], l.max[1]));
+    solver.prescribe_velocity(nodes, l.along_x, l.along_y, l.velocity[0], l.velocity[1]);
+  }
+  for (size_t k = 0; apply_pressures && k < c.pressures.size(); ++k) {
+    const PressureLoad& l = c.pressures[k];
+    const auto group = mesh.boundary_groups.find(l.boundary);
+    if (group == mesh.boundary_groups.end()) {
+      std::string names;
+      for (const auto& [name, edges] : mesh.boundary_groups) names += (names.empty() ? "" : ", ") + name;
+      throw InputError(fmt::format("rock.pressure.{}.boundary = \"{}\": the mesh has no such boundary group (it has: {})",
+                                   k, l.boundary, names));
+    }
+    solver.set_edge_pressure(fdem::boundary_slots(topo, group->second, l.boundary), l.pressure);
+  }
+  return m;
+}
+
+double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver) {
+  double dt = c.step_fraction * solver.stable_dt();
+  if (c.fixed_dt) {
+    if (*c.fixed_dt > solver.stable_dt())
+      throw InputError(fmt::format("time.dt = {} s exceeds the rock's stable step {:.4g} s for this mesh and these "
+                                   "penalties: give time.dt <= {:.4g} s or leave it out", *c.fixed_dt,
+                                   solver.stable_dt(), solver.stable_dt()));
+    dt = *c.fixed_dt;
+  }
+  return dt;
+}
+
+RockOutputs::RockOutputs(const RockCaseConfig& c, fdem::RockSolver& solver)
+    : c_(c), solver_(solver), dir_(c.output_directory), rock_pvd_((dir_ / "rock.pvd").string()),
+      joints_pvd_((dir_ / "joints.pvd").string()) {
+  std::filesystem::create_directories(dir_);
+  series_.open(dir_ / "rock_series.csv", std::ios::trunc);
+  series_ << "step,time_s,kinetic_J_per_m,strain_J_per_m,joint_work_J_per_m,fracture_dissipated_J_per_m,"
+             "contact_work_J_per_m,friction_dissipated_J_per_m,damping_dissipated_J_per_m,external_work_J_per_m,"
+             "energy_balance_J_per_m,broken_joints,crack_length_m\n";
+  e0_ = solver_.energies();
+}
+
+void RockOutputs::snapshot() {
+  if (!c_.vtk) return;
+  const fdem::RockSnapshot s = solver_.snapshot();
+  const std::string rock_name = fmt::format("rock_{:06d}.vtu", index_);
+  const std::string joints_name = fmt::format("joints_{:06d}.vtu", index_++);
+  write_rock_vtu((dir_ / rock_name).string(), s);
+  write_joints_vtu((dir_ / joints_name).string(), s);
+  rock_pvd_.add(solver_.time(), rock_name);
+  joints_pvd_.add(solver_.time(), joints_name);
+}
+
+fdem::RockEnergies RockOutputs::monitor() {
+  const fdem::RockEnergies e = solver_.energies();
+  const double balance = e.kinetic + e.strain + e.joint_work + e.contact_work + e.damping_dissipated -
+                         (e0_.kinetic + e0_.strain + e.external_work);
+  series_ << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e}\n",
+                         solver_.steps(), solver_.time(), e.kinetic, e.strain, e.joint_work, e.fracture_dissipated,
+                         e.contact_work, e.friction_dissipated, e.damping_dissipated, e.external_work, balance,
+                         e.broken_joints, e.crack_length)
+          << std::flush;
+  return e;
+}
+
+}  // namespace blastsim::app
