@@ -35,10 +35,10 @@ note "compute-sanitizer memcheck (gas 64^2, 2e-5 s): rc=$? $(grep -E 'ERROR SUMM
 compute-sanitizer --tool memcheck --error-exitcode 9 build-cuda/tests/fdem/test_fdem "[determinism],[F7]" \
   >> "$out/memcheck.log" 2>&1
 note "compute-sanitizer memcheck (test_fdem [determinism],[F7]): rc=$? $(grep -E 'ERROR SUMMARY' "$out/memcheck.log" | tail -1)"
-# memcheck on the coupler: masks, I1 and the shock reflected by an immersed rock block (I2)
-compute-sanitizer --tool memcheck --error-exitcode 9 build-cuda/tests/ibm/test_ibm "[masks],[I1],[I2]" \
+# memcheck on the coupler: masks, cells changing state, I1 and the shock reflected by an immersed rock block (I2)
+compute-sanitizer --tool memcheck --error-exitcode 9 build-cuda/tests/ibm/test_ibm "[masks],[transitions],[I1],[I2]" \
   >> "$out/memcheck.log" 2>&1
-note "compute-sanitizer memcheck (test_ibm [masks],[I1],[I2]): rc=$? $(grep -E 'ERROR SUMMARY' "$out/memcheck.log" | tail -1)"
+note "compute-sanitizer memcheck (test_ibm [masks],[transitions],[I1],[I2]): rc=$? $(grep -E 'ERROR SUMMARY' "$out/memcheck.log" | tail -1)"
 
 sizes=${GPU_BENCH_SIZES:-1250,2500,5001}
 build-cuda/apps/bench/blastsim-bench-cip --sizes="$sizes" --steps=20 > "$out/bench_cip.log" 2>&1
