@@ -13,6 +13,9 @@
 
 #if defined(BLASTSIM_HAVE_GMSH)
 #include <gmsh.h>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 #endif
 
 namespace blastsim::fdem {
@@ -47,10 +50,20 @@ class GmshSession {
   GmshSession() {
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.NumThreads", 1);
+    gmsh::option::setNumber("General.NumThreads", 1);  // Gmsh sets the process's OpenMP thread count to this
     gmsh::model::add("blastsim");
   }
-  ~GmshSession() { gmsh::finalize(); }
+  ~GmshSession() {
+    gmsh::finalize();
+#if defined(_OPENMP)
+    omp_set_num_threads(threads_);  // give the solvers back every thread (seen: runs after meshing used one)
+#endif
+  }
+
+ private:
+#if defined(_OPENMP)
+  int threads_ = omp_get_max_threads();  // taken before gmsh::initialize()
+#endif
 };
 
 //! The current model's triangles and 1-D physical groups as a NamedMesh (vertices renumbered from 0).
