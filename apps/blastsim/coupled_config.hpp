@@ -21,6 +21,7 @@ struct CoupledCaseConfig {
   CaseConfig gas;       //!< [domain], [gas], [probe]; time and output fields copied from [time], [output]
   RockCaseConfig rock;  //!< [rock]; time and output fields copied likewise
   std::vector<MonitorRegion> regions;  //!< [[monitor.region]]
+  bool checkpoint = true;              //!< output.checkpoint: checkpoint.bin with every snapshot
   std::vector<std::string> echo;
 };
 

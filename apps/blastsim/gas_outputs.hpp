@@ -4,9 +4,10 @@
 #pragma once
 
 #include "blastsim/cip/gas_solver.hpp"
+#include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/error.hpp"
 #include "case_config.hpp"
-#include "output_files.hpp"
+#include "output_checkpoint.hpp"
 #include "vtk_gas_writer.hpp"
 
 #include <fmt/format.h>
@@ -57,19 +58,51 @@ class GasOutputs {
  public:
   //! `gas_alone`: false in a coupled run, where the gas exchanges energy with the rock, so only the mass
   //! balance of gas_totals.csv is watched (the coupled budget is in coupling_series.csv).
-  GasOutputs(const CaseConfig& c, cip::GasSolver& solver, std::ostream& log, bool gas_alone = true)
-      : c_(c), solver_(solver), log_(log), gas_alone_(gas_alone), dir_(c.output_directory), pvd_((dir_ / "gas.pvd").string()) {
-    std::filesystem::create_directories(dir_);
-    totals_.open(dir_ / "gas_totals.csv", std::ios::trunc);
-    totals_ << "step,time_s,dt_s,mass_kg_per_m,momentum_x_kg_per_s,momentum_y_kg_per_s,internal_energy_J_per_m,"
-               "kinetic_energy_J_per_m,total_energy_J_per_m,mass_out_kg_per_m,momentum_x_out_kg_per_s,"
-               "momentum_y_out_kg_per_s,energy_out_J_per_m,mass_balance_drift,energy_balance_drift\n";
+  //! `resume`: a restart, whose read_checkpoint() follows (files are kept, not started anew).
+  GasOutputs(const CaseConfig& c, cip::GasSolver& solver, std::ostream& log, bool gas_alone = true, bool resume = false)
+      : c_(c), solver_(solver), log_(log), gas_alone_(gas_alone), dir_(make_output_dir(c.output_directory)),
+        pvd_((dir_ / "gas.pvd").string()),
+        totals_((dir_ / "gas_totals.csv").string(),
+                "step,time_s,dt_s,mass_kg_per_m,momentum_x_kg_per_s,momentum_y_kg_per_s,internal_energy_J_per_m,"
+                "kinetic_energy_J_per_m,total_energy_J_per_m,mass_out_kg_per_m,momentum_x_out_kg_per_s,"
+                "momentum_y_out_kg_per_s,energy_out_J_per_m,mass_balance_drift,energy_balance_drift",
+                resume) {
     for (const PointProbe& p : c.point_probes) {
-      point_files_.emplace_back(dir_ / fmt::format("point_{}.csv", p.name), std::ios::trunc);
-      point_files_.back() << "t,x,y,rho,u,v,p,e\n";
+      point_files_.emplace_back((dir_ / fmt::format("point_{}.csv", p.name)).string(), "t,x,y,rho,u,v,p,e", resume);
       next_point_.push_back(0.0);
     }
     for (size_t k = 0; k < c.line_probes.size(); ++k) line_done_.emplace_back(c.line_probes[k].times.size(), false);
+  }
+
+  //! The output schedule, the monitor's reference and the sizes of the CSV files, for a restart.
+  void write_checkpoint(CheckpointWriter& w) {
+    w.value("out.gas.counters", std::array<double, 5>{next_snapshot_, static_cast<double>(snapshot_index_),
+                                                      static_cast<double>(mass_warned_), static_cast<double>(energy_warned_), 0.0});
+    w.value("out.gas.initial", initial_);
+    w.host_array("out.gas.next_point", next_point_);
+    std::vector<std::uint8_t> done;
+    for (const auto& l : line_done_) done.insert(done.end(), l.begin(), l.end());
+    w.host_array("out.gas.line_done", done);
+    std::vector<std::uint64_t> sizes{totals_.size()};
+    for (CsvSeries& f : point_files_) sizes.push_back(f.size());
+    w.host_array("out.gas.csv_sizes", sizes);
+    write_pvd_checkpoint(w, "out.gas.pvd", pvd_);
+  }
+  void read_checkpoint(CheckpointReader& r) {
+    const std::array<double, 5> k = r.value<std::array<double, 5>>("out.gas.counters");
+    next_snapshot_ = k[0], snapshot_index_ = static_cast<int>(k[1]), mass_warned_ = k[2] != 0, energy_warned_ = k[3] != 0;
+    initial_ = r.value<cip::GasTotals>("out.gas.initial");
+    next_point_ = r.host_array<double>("out.gas.next_point");
+    const std::vector<std::uint8_t> done = r.host_array<std::uint8_t>("out.gas.line_done");
+    const std::vector<std::uint64_t> sizes = r.host_array<std::uint64_t>("out.gas.csv_sizes");
+    size_t at = 0;
+    for (auto& l : line_done_)
+      for (size_t m = 0; m < l.size(); ++m) l[m] = at < done.size() && done[at++];
+    if (next_point_.size() != point_files_.size() || sizes.size() != point_files_.size() + 1 || at != done.size())
+      throw InputError("checkpoint " + r.path() + ": its probes differ from this case's");
+    totals_.truncate_to(sizes[0]);
+    for (size_t p = 0; p < point_files_.size(); ++p) point_files_[p].truncate_to(sizes[p + 1]);
+    read_pvd_checkpoint(r, "out.gas.pvd", pvd_);
   }
 
   //! Earliest pending event time after t (snapshot, line probe, end), for the Courant-mode dt clip.
@@ -136,9 +169,8 @@ class GasOutputs {
     const std::vector<cip::GasSample> smp = solver_.sample(pts);
     for (size_t m = 0; m < smp.size(); ++m) {
       const cip::GasSample& g = smp[m];
-      point_files_[which[m]] << fmt::format("{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", t, g.x, g.y,
-                                            g.rho, g.u, g.v, g.p, g.e)
-                             << std::flush;
+      point_files_[which[m]].row(fmt::format("{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}", t, g.x, g.y, g.rho,
+                                             g.u, g.v, g.p, g.e));
     }
   }
   //! The conservation monitor: totals in the domain, what crossed the outer boundary, and the relative
@@ -149,12 +181,11 @@ class GasOutputs {
     if (solver_.steps() == 0) initial_ = s;
     const double mass_drift = (s.mass + o.mass) / initial_.mass - 1;
     const double energy_drift = (s.total_energy() + o.energy) / initial_.total_energy() - 1;
-    totals_ << fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
-                           "{:.12e},{:.6e},{:.6e}\n",
+    totals_.row(fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
+                           "{:.12e},{:.6e},{:.6e}",
                            solver_.steps(), solver_.time(), dt, s.mass, s.momentum_x, s.momentum_y, s.internal_energy,
                            s.kinetic_energy, s.total_energy(), o.mass, o.momentum_x, o.momentum_y, o.energy,
-                           mass_drift, energy_drift)
-            << std::flush;
+                           mass_drift, energy_drift));
     warn_once(mass_warned_, "mass", mass_drift);
     if (gas_alone_) warn_once(energy_warned_, "energy", energy_drift);
   }
@@ -174,8 +205,8 @@ class GasOutputs {
   bool mass_warned_ = false, energy_warned_ = false;
   std::filesystem::path dir_;
   PvdSeries pvd_;
-  std::ofstream totals_;
-  std::vector<std::ofstream> point_files_;
+  CsvSeries totals_;
+  std::vector<CsvSeries> point_files_;
   std::vector<double> next_point_;
   std::vector<std::vector<bool>> line_done_;
   double next_snapshot_ = 0.0;

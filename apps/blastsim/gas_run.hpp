@@ -9,7 +9,8 @@
 namespace blastsim::app {
 
 struct RunOptions {
-  bool quiet = false;  //!< no progress lines
+  bool quiet = false;    //!< no progress lines
+  bool restart = false;  //!< continue from the output folder's checkpoint.bin (coupled cases)
 };
 
 //! Runs the case to its end time, writing into config.output_directory. Throws InputError for a fixed

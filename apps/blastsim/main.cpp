@@ -22,11 +22,13 @@ int main(int argc, char** argv) {
   CLI::App cli{"blastsim: 2-D rock-blasting simulator (CIP gas, FDEM rock, or both coupled by immersed boundaries)"};
   std::string input;
   std::vector<std::string> overrides;
-  bool quiet = false, check_only = false;
+  bool quiet = false, check_only = false, restart = false;
   cli.add_option("input", input, "case file (TOML); docs/input.md lists every key")->required();
   cli.add_option("overrides", overrides, "section.key=value settings that replace the file's");
   cli.add_flag("-q,--quiet", quiet, "no progress lines");
   cli.add_flag("--check", check_only, "read and validate the input, print the resolved configuration, run nothing");
+  cli.add_flag("--restart", restart,
+               "coupled cases: continue from output.directory/checkpoint.bin (same input; time.end may grow)");
   CLI11_PARSE(cli, argc, argv);
 
   using namespace blastsim;
@@ -40,9 +42,12 @@ int main(int argc, char** argv) {
     auto run = [&](const auto& config, auto runner) {
       echo(config.echo);
       if (check_only) return;
-      runner(config, std::cout, app::RunOptions{quiet});
+      runner(config, std::cout, app::RunOptions{quiet, restart});
       std::cout << "done; results in " << config_directory(config) << "\n";
     };
+    if (restart && app::case_kind(table) != app::CaseKind::coupled)
+      throw InputError("--restart: checkpoints are written by coupled gas-rock cases only; this input is a " +
+                       std::string(app::case_kind(table) == app::CaseKind::rock ? "rock-only" : "gas-only") + " case");
     switch (app::case_kind(table)) {
       case app::CaseKind::rock: run(app::read_rock_case(table), app::run_rock_case); break;
       case app::CaseKind::coupled: run(app::read_coupled_case(table), app::run_coupled_case); break;

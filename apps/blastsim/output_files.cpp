@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -29,6 +30,15 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
 
 void PvdSeries::add(double time, const std::string& file_name) {
   entries_.emplace_back(time, file_name);
+  write();
+}
+
+void PvdSeries::restore(const Entries& entries) {
+  entries_ = entries;
+  write();
+}
+
+void PvdSeries::write() const {
   write_atomically(path_, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
@@ -36,6 +46,30 @@ void PvdSeries::add(double time, const std::string& file_name) {
       out << fmt::format("    <DataSet timestep=\"{:.9e}\" group=\"\" part=\"0\" file=\"{}\"/>\n", t, f);
     out << "  </Collection>\n</VTKFile>\n";
   });
+}
+
+CsvSeries::CsvSeries(std::string path, const std::string& header, bool resume) : path_(std::move(path)) {
+  out_.open(path_, resume ? std::ios::app : std::ios::trunc);
+  if (!out_) throw std::runtime_error(fmt::format("cannot open '{}' for writing", path_));
+  if (!resume) row(header);
+}
+
+void CsvSeries::row(const std::string& line) {
+  out_ << line << '\n';
+  out_.flush();
+  if (!out_) throw std::runtime_error(fmt::format("error while writing '{}'", path_));
+}
+
+std::uint64_t CsvSeries::size() {
+  out_.flush();
+  return std::filesystem::file_size(path_);
+}
+
+void CsvSeries::truncate_to(std::uint64_t bytes) {
+  out_.close();
+  std::filesystem::resize_file(path_, bytes);
+  out_.open(path_, std::ios::app);
+  if (!out_) throw std::runtime_error(fmt::format("cannot reopen '{}'", path_));
 }
 
 }  // namespace blastsim::app

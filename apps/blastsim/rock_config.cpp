@@ -139,6 +139,7 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
   assign_output_basics(basics, c.gas);
   assign_output_basics(basics, c.rock);
   c.gas.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
+  c.checkpoint = out.boolean("checkpoint", true);
   out.finish();
 
   TableReader monitor = root.table("monitor");

@@ -84,15 +84,30 @@ double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver) {
   return dt;
 }
 
-RockOutputs::RockOutputs(const RockCaseConfig& c, fdem::RockSolver& solver)
-    : c_(c), solver_(solver), dir_(c.output_directory), rock_pvd_((dir_ / "rock.pvd").string()),
-      joints_pvd_((dir_ / "joints.pvd").string()) {
-  std::filesystem::create_directories(dir_);
-  series_.open(dir_ / "rock_series.csv", std::ios::trunc);
-  series_ << "step,time_s,kinetic_J_per_m,strain_J_per_m,joint_work_J_per_m,fracture_dissipated_J_per_m,"
-             "contact_work_J_per_m,friction_dissipated_J_per_m,damping_dissipated_J_per_m,external_work_J_per_m,"
-             "energy_balance_J_per_m,broken_joints,crack_length_m\n";
-  e0_ = solver_.energies();
+RockOutputs::RockOutputs(const RockCaseConfig& c, fdem::RockSolver& solver, bool resume)
+    : c_(c), solver_(solver), dir_(make_output_dir(c.output_directory)), rock_pvd_((dir_ / "rock.pvd").string()),
+      joints_pvd_((dir_ / "joints.pvd").string()),
+      series_((dir_ / "rock_series.csv").string(),
+              "step,time_s,kinetic_J_per_m,strain_J_per_m,joint_work_J_per_m,fracture_dissipated_J_per_m,"
+              "contact_work_J_per_m,friction_dissipated_J_per_m,damping_dissipated_J_per_m,external_work_J_per_m,"
+              "energy_balance_J_per_m,broken_joints,crack_length_m",
+              resume),
+      e0_(solver_.energies()) {}
+
+void RockOutputs::write_checkpoint(CheckpointWriter& w) {
+  w.value("out.rock.index", index_);
+  w.value("out.rock.initial", e0_);
+  w.value("out.rock.csv_size", series_.size());
+  write_pvd_checkpoint(w, "out.rock.pvd", rock_pvd_);
+  write_pvd_checkpoint(w, "out.joints.pvd", joints_pvd_);
+}
+
+void RockOutputs::read_checkpoint(CheckpointReader& r) {
+  index_ = r.value<int>("out.rock.index");
+  e0_ = r.value<fdem::RockEnergies>("out.rock.initial");
+  series_.truncate_to(r.value<std::uint64_t>("out.rock.csv_size"));
+  read_pvd_checkpoint(r, "out.rock.pvd", rock_pvd_);
+  read_pvd_checkpoint(r, "out.joints.pvd", joints_pvd_);
 }
 
 void RockOutputs::snapshot() {
@@ -110,11 +125,10 @@ fdem::RockEnergies RockOutputs::monitor() {
   const fdem::RockEnergies e = solver_.energies();
   const double balance = e.kinetic + e.strain + e.joint_work + e.contact_work + e.damping_dissipated -
                          (e0_.kinetic + e0_.strain + e.external_work);
-  series_ << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e}\n",
+  series_.row(fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e}",
                          solver_.steps(), solver_.time(), e.kinetic, e.strain, e.joint_work, e.fracture_dissipated,
                          e.contact_work, e.friction_dissipated, e.damping_dissipated, e.external_work, balance,
-                         e.broken_joints, e.crack_length)
-          << std::flush;
+                         e.broken_joints, e.crack_length));
   return e;
 }
 

@@ -4,9 +4,10 @@
 //! and coupled runs. Include only from kernel sources.
 #pragma once
 
+#include "blastsim/core/checkpoint.hpp"
 #include "blastsim/fdem/gmsh_mesh.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
-#include "output_files.hpp"
+#include "output_checkpoint.hpp"
 #include "rock_config.hpp"
 
 #include <filesystem>
@@ -30,15 +31,18 @@ double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver);
 //! rock.pvd / rock_NNNNNN.vtu, joints.pvd / joints_NNNNNN.vtu and rock_series.csv in the output folder.
 class RockOutputs {
  public:
-  RockOutputs(const RockCaseConfig& c, fdem::RockSolver& solver);
+  //! `resume`: a restart, whose read_checkpoint() follows (files are kept, not started anew).
+  RockOutputs(const RockCaseConfig& c, fdem::RockSolver& solver, bool resume = false);
   void snapshot();             //!< one .vtu pair (when output.vtk)
   fdem::RockEnergies monitor();  //!< one row of rock_series.csv; returns the energies
+  void write_checkpoint(CheckpointWriter& w);  //!< snapshot count, initial energies, series sizes
+  void read_checkpoint(CheckpointReader& r);
  private:
   const RockCaseConfig& c_;
   fdem::RockSolver& solver_;
   std::filesystem::path dir_;
   PvdSeries rock_pvd_, joints_pvd_;
-  std::ofstream series_;
+  CsvSeries series_;
   fdem::RockEnergies e0_;
   int index_ = 0;
 };

@@ -2,6 +2,8 @@
 //! \brief The CIP gas step (paper eqs. 1-5; Yabe & Aoki 1991; Yabe, Xiao & Utsumi 2001) as device kernels.
 #include "blastsim/cip/gas_solver.hpp"
 
+#include "blastsim/core/checkpoint.hpp"
+
 #include "blastsim/core/error.hpp"
 #include "ghosts.hpp"
 
@@ -678,6 +680,53 @@ void mark_static_solid(GasSolver& solver, const std::function<bool(double, doubl
                thrust::device_pointer_cast(ib.u_imposed.data) + sh.size(), 0.0);
   thrust::fill(thrust::device, thrust::device_pointer_cast(ib.v_imposed.data),
                thrust::device_pointer_cast(ib.v_imposed.data) + sh.size(), 0.0);
+}
+
+namespace {
+std::string fmt_shape_mismatch(const std::string& path, int nx, int ny, int gx, int gy) {
+  return "checkpoint " + path + ": its grid is " + std::to_string(nx) + " x " + std::to_string(ny) + " cells, this case's " +
+         std::to_string(gx) + " x " + std::to_string(gy);
+}
+
+//! The arrays of a checkpoint, in order (shared by writing and reading).
+template <class State, class Immersed, class Fn>
+void for_each_checkpoint_array(State& st, Immersed& ib, Fn&& fn) {
+  const char* unknowns[4] = {"rho", "e", "u", "v"};
+  const std::array<decltype(&st.rho), 4> fields{&st.rho, &st.e, &st.u, &st.v};
+  for (int k = 0; k < 4; ++k) {
+    fn(std::string("gas.") + unknowns[k] + ".f", fields[k]->f);
+    fn(std::string("gas.") + unknowns[k] + ".gx", fields[k]->gx);
+    fn(std::string("gas.") + unknowns[k] + ".gy", fields[k]->gy);
+  }
+  fn("gas.cell_active", ib.cell_active);
+  fn("gas.u_prescribed", ib.u_prescribed);
+  fn("gas.v_prescribed", ib.v_prescribed);
+  fn("gas.u_imposed", ib.u_imposed);
+  fn("gas.v_imposed", ib.v_imposed);
+}
+}  // namespace
+
+void GasSolver::write_checkpoint(CheckpointWriter& w) const {
+  w.value("gas.shape", std::array<int, 2>{grid_.nx, grid_.ny});
+  for_each_checkpoint_array(state_, immersed_, [&](const std::string& name, const auto& v) { w.array(name, v); });
+  w.array("gas.outflow_pressure", outflow_pressure_);
+  w.array("gas.outflow_velocity", outflow_velocity_);
+  w.value("gas.time", time_);
+  w.value("gas.steps", steps_);
+  w.value("gas.outflow", outflow_);
+}
+
+void GasSolver::read_checkpoint(CheckpointReader& r) {
+  const std::array<int, 2> shape = r.value<std::array<int, 2>>("gas.shape");
+  if (shape[0] != grid_.nx || shape[1] != grid_.ny)
+    throw InputError(fmt_shape_mismatch(r.path(), shape[0], shape[1], grid_.nx, grid_.ny));
+  const std::size_t n = static_cast<std::size_t>(grid_.padded_shape().size());
+  for_each_checkpoint_array(state_, immersed_, [&](const std::string& name, auto& v) { r.array(name, v, n); });
+  r.array("gas.outflow_pressure", outflow_pressure_, outflow_pressure_.size());
+  r.array("gas.outflow_velocity", outflow_velocity_, outflow_velocity_.size());
+  time_ = r.value<double>("gas.time");
+  steps_ = r.value<long long>("gas.steps");
+  outflow_ = r.value<BoundaryOutflow>("gas.outflow");
 }
 
 }  // namespace blastsim::cip

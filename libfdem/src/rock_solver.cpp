@@ -2,6 +2,7 @@
 //! \brief RockSolver: set-up from the FDEM topology, the explicit step, contact broad phase, energies, snapshots.
 #include "blastsim/fdem/rock_solver.hpp"
 
+#include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/error.hpp"
 #include "rock_kernels.hpp"
 
@@ -409,6 +410,44 @@ RockSnapshot RockSolver::snapshot() const {
   s.joint_broken = to_host(joint_broken_);
   s.joint_nodes = joint_nodes_host_;
   return s;
+}
+
+template <class Self, class Fn>
+void RockSolver::for_each_checkpoint_array(Self& r, Fn&& fn) {
+  fn("rock.x", r.x_), fn("rock.y", r.y_), fn("rock.vx", r.vx_), fn("rock.vy", r.vy_), fn("rock.x0", r.x0_), fn("rock.y0", r.y0_);
+  fn("rock.mass", r.mass_), fn("rock.f_tri_x", r.f_tri_x_), fn("rock.f_tri_y", r.f_tri_y_), fn("rock.f_con_x", r.f_con_x_);
+  fn("rock.f_con_y", r.f_con_y_), fn("rock.f_pres_x", r.f_pres_x_), fn("rock.f_pres_y", r.f_pres_y_);
+  fn("rock.constraint", r.constraint_), fn("rock.v_prescribed", r.v_prescribed_), fn("rock.work", r.work_);
+  fn("rock.support", r.support_), fn("rock.inv_f0", r.inv_f0_), fn("rock.area0", r.area0_), fn("rock.eta", r.eta_);
+  fn("rock.stress", r.stress_), fn("rock.dissipation", r.dissipation_), fn("rock.slot_force", r.slot_force_);
+  fn("rock.slot_neighbour", r.slot_neighbour_), fn("rock.slot_joint", r.slot_joint_), fn("rock.edge_exposed", r.edge_exposed_);
+  fn("rock.edge_pressure", r.edge_pressure_), fn("rock.joint_nodes", r.joint_nodes_), fn("rock.joint_strength", r.joint_strength_);
+  fn("rock.joint_damage", r.joint_damage_), fn("rock.joint_state", r.joint_state_), fn("rock.joint_traction", r.joint_traction_);
+  fn("rock.joint_broken", r.joint_broken_), fn("rock.cell_key", r.cell_key_), fn("rock.sorted_triangles", r.sorted_triangles_);
+  fn("rock.cell_start", r.cell_start_), fn("rock.cell_end", r.cell_end_), fn("rock.neighbour_offset", r.neighbour_offset_);
+  fn("rock.neighbour_list", r.neighbour_list_);
+}
+
+void RockSolver::write_checkpoint(CheckpointWriter& w) const {
+  w.value("rock.counts", std::array<int, 2>{triangles_, joints_});
+  for_each_checkpoint_array(*this, [&](const std::string& name, const auto& v) { w.array(name, v); });
+  w.value("rock.scalars", std::array<double, 9>{time_, pressure_scale_, dt_prev_, cell_size_, grid_x0_, grid_y0_, buffer_,
+                                                travel_since_build_, stable_dt_});
+  w.value("rock.integers", std::array<long, 4>{steps_, rebuilds_, grid_nx_, grid_ny_});
+}
+
+void RockSolver::read_checkpoint(CheckpointReader& r) {
+  const std::array<int, 2> counts = r.value<std::array<int, 2>>("rock.counts");
+  if (counts[0] != triangles_ || counts[1] != joints_)
+    throw InputError("checkpoint " + r.path() + ": its rock has " + std::to_string(counts[0]) + " triangles and " +
+                     std::to_string(counts[1]) + " joints, this case's mesh " + std::to_string(triangles_) + " and " +
+                     std::to_string(joints_));
+  for_each_checkpoint_array(*this, [&](const std::string& name, auto& v) { r.array(name, v); });
+  const std::array<double, 9> d = r.value<std::array<double, 9>>("rock.scalars");
+  time_ = d[0], pressure_scale_ = d[1], dt_prev_ = d[2], cell_size_ = d[3], grid_x0_ = d[4], grid_y0_ = d[5];
+  buffer_ = d[6], travel_since_build_ = d[7], stable_dt_ = d[8];
+  const std::array<long, 4> n = r.value<std::array<long, 4>>("rock.integers");
+  steps_ = n[0], rebuilds_ = n[1], grid_nx_ = static_cast<int>(n[2]), grid_ny_ = static_cast<int>(n[3]);
 }
 
 }  // namespace blastsim::fdem

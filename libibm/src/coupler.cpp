@@ -3,6 +3,7 @@
 #include "blastsim/ibm/coupler.hpp"
 
 #include "blastsim/ibm/coupling_kernels.hpp"
+#include "blastsim/core/checkpoint.hpp"
 
 #include <thrust/fill.h>
 
@@ -314,6 +315,16 @@ long GasRockCoupler::inactive_cells() {
   return static_cast<long>(reduce_sum("ibm.inactive", static_cast<index_t>(g.nx) * g.ny, 0.0, [=] BLAST_HD(index_t k) {
     return active(static_cast<int>(k % nx), static_cast<int>(k / nx)) ? 0.0 : 1.0;
   }));
+}
+
+void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
+  w.value("ibm.masks_set", static_cast<int>(masks_set_));
+  w.array("ibm.ledger", ledger_);
+}
+
+void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
+  masks_set_ = r.value<int>("ibm.masks_set") != 0;
+  r.array("ibm.ledger", ledger_, ledger_.size());
 }
 
 }  // namespace blastsim::ibm

@@ -12,6 +12,11 @@
 #include <string>
 #include <vector>
 
+namespace blastsim {
+class CheckpointWriter;
+class CheckpointReader;
+}  // namespace blastsim
+
 namespace blastsim::cip {
 
 struct BoundaryContext;
@@ -62,6 +67,12 @@ class GasSolver {
   HostGasFields to_host();
   //! Describes the first active cell with a non-finite or non-positive density or energy ("" if none).
   std::string describe_invalid_cell();
+
+  //! Appends the state that carries from one step to the next (fields with derivatives, immersed-boundary
+  //! input, outflow reference and balance, time, step count) to a checkpoint; read_checkpoint() restores it
+  //! into a solver built with the same grid, so the run continues bit for bit.
+  void write_checkpoint(CheckpointWriter& w) const;
+  void read_checkpoint(CheckpointReader& r);
 
  private:
   BoundaryContext boundary_context() const;

@@ -17,6 +17,11 @@
 #include <cstdint>
 #include <vector>
 
+namespace blastsim {
+class CheckpointWriter;
+class CheckpointReader;
+}  // namespace blastsim
+
 namespace blastsim::fdem {
 
 namespace detail {
@@ -73,6 +78,12 @@ class RockSolver {
   DeviceVector<double>& edge_pressure() { return edge_pressure_; }
   const DeviceVector<std::uint8_t>& edge_exposed() const { return edge_exposed_; }
 
+  // --- checkpoint and restart ---
+  //! Appends every array and counter of the solver to a checkpoint; read_checkpoint() restores them into a
+  //! solver built from the same mesh and options, so the run continues bit for bit.
+  void write_checkpoint(CheckpointWriter& w) const;
+  void read_checkpoint(CheckpointReader& r);
+
   // --- diagnostics and output (host copies; each costs a device sync) ---
   RockEnergies energies();
   RockSnapshot snapshot() const;
@@ -95,6 +106,8 @@ class RockSolver {
 
  private:
   detail::RockArrays arrays();
+  template <class Self, class Fn>
+  static void for_each_checkpoint_array(Self& self, Fn&& fn);
 
   RockMaterial material_;
   RockOptions options_;

@@ -60,6 +60,11 @@ class GasRockCoupler {
   long inactive_cells();
   //! Force of the gas on the rock, its cumulative work and the cell-transition ledger (device reductions).
   CouplingDiagnostics diagnostics();
+  //! The coupler's own state (whether the masks are set, the transition ledger) in a checkpoint; the solvers
+  //! write theirs separately.
+  void write_checkpoint(CheckpointWriter& w) const;
+  void read_checkpoint(CheckpointReader& r);
+
   //! Gas mass and energy in the active cells whose centres lie in `region`.
   cip::GasTotals gas_in(const cip::CellRegion& region) { return gas_.totals(region); }
 
