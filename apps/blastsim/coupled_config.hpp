@@ -22,6 +22,7 @@ struct CoupledCaseConfig {
   RockCaseConfig rock;  //!< [rock]; time and output fields copied likewise
   std::vector<MonitorRegion> regions;  //!< [[monitor.region]]
   bool checkpoint = true;              //!< output.checkpoint: checkpoint.bin with every snapshot
+  double monitor_interval = 1e-6;      //!< monitor.interval [s]: wall_series.csv (disc-with-hole rock)
   std::vector<std::string> echo;
 };
 

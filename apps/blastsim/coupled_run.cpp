@@ -80,6 +80,114 @@ class CouplingSeries {
   }
 };
 
+//! Blasthole monitor, for a rock made as a disc with a hole (the single-hole blast): wall_series.csv (gas
+//! pressure just inside the hole wall against the rock's radial stress at the wall, S1 / the paper's Fig. 4b;
+//! the gas at the rock's outer surface) every monitor.interval, and summary.txt with the events the paper
+//! reports: the first crack, and the first time detonation gas leaves the outer surface, with its speed.
+class BlastholeMonitor {
+ public:
+  BlastholeMonitor(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, bool resume)
+      : c_(c), gas_(gas), rock_(rock), active_(c.rock.mesh.shape == "disc_with_hole"),
+        file_((make_output_dir(c.gas.output_directory) / "wall_series.csv").string(),
+              "time_s,gas_pressure_wall_mean_Pa,gas_pressure_wall_min_Pa,gas_pressure_wall_max_Pa,"
+              "rock_radial_stress_wall_mean_Pa,rock_radial_stress_wall_min_Pa,rock_radial_stress_wall_max_Pa,"
+              "broken_joints,crack_length_m,outer_surface_gas_pressure_max_Pa,outer_surface_gas_speed_max_m_per_s",
+              resume || !active_) {
+    const RockMeshSpec& m = c.rock.mesh;
+    const double h = std::min(c.gas.grid.dx, c.gas.grid.dy);
+    for (int k = 0; k < kWallPoints; ++k) {  // just inside the hole wall, half a cell in
+      const double th = 2 * M_PI * (k + 0.5) / kWallPoints;
+      points_.push_back({m.center[0] + (m.hole_radius - 0.5 * h) * std::cos(th), m.center[1] + (m.hole_radius - 0.5 * h) * std::sin(th)});
+    }
+    const int ring = std::max(64, static_cast<int>(2 * M_PI * m.radius / h));  // just outside the outer surface
+    for (int k = 0; k < ring; ++k) {
+      const double th = 2 * M_PI * (k + 0.5) / ring;
+      points_.push_back({m.center[0] + (m.radius + 0.5 * h) * std::cos(th), m.center[1] + (m.radius + 0.5 * h) * std::sin(th)});
+      outward_.push_back({std::cos(th), std::sin(th)});
+    }
+    p_ambient_ = c.gas.eos.pressure(c.gas.ambient.density, c.gas.ambient.internal_energy);
+  }
+  bool active() const { return active_; }
+
+  void sample() {
+    if (!active_ || gas_.time() < next_ - 1e-12 * c_.gas.end_time) return;
+    while (next_ <= gas_.time() + 1e-12 * c_.gas.end_time) next_ += c_.monitor_interval;
+    const std::vector<cip::GasSample> g = gas_.sample(points_);
+    double pm = 0, pmin = 1e300, pmax = -1e300;
+    for (int k = 0; k < kWallPoints; ++k) pm += g[k].p / kWallPoints, pmin = std::min(pmin, g[k].p), pmax = std::max(pmax, g[k].p);
+    // Rock: sigma_rr of the triangles whose centroid lies within half an element of the hole wall.
+    const fdem::RockSnapshot snap = rock_.snapshot();
+    const RockMeshSpec& m = c_.rock.mesh;
+    double sm = 0, smin = 1e300, smax = -1e300;
+    int n = 0;
+    for (size_t t = 0; t < snap.stress.size() / 3; ++t) {
+      const double cx = (snap.x[3 * t] + snap.x[3 * t + 1] + snap.x[3 * t + 2]) / 3 - m.center[0];
+      const double cy = (snap.y[3 * t] + snap.y[3 * t + 1] + snap.y[3 * t + 2]) / 3 - m.center[1];
+      const double r = std::hypot(cx, cy);
+      if (r > m.hole_radius + 0.5 * m.element_size) continue;
+      const double cs = cx / r, sn = cy / r;
+      const double srr = snap.stress[3 * t] * cs * cs + 2 * snap.stress[3 * t + 1] * sn * cs + snap.stress[3 * t + 2] * sn * sn;
+      sm += srr, smin = std::min(smin, srr), smax = std::max(smax, srr), ++n;
+    }
+    if (n > 0) sm /= n;
+    // Gas at the outer surface: detonation gas is taken to have left the rock where the pressure just outside
+    // the original surface exceeds twice the ambient (the air pushed by the rock stays within a few kPa).
+    double out_p = 0, out_speed = 0;
+    for (size_t k = kWallPoints; k < g.size(); ++k) {
+      out_p = std::max(out_p, g[k].p);
+      const std::array<double, 2>& o = outward_[k - kWallPoints];
+      if (g[k].p > 2 * p_ambient_) out_speed = std::max(out_speed, g[k].u * o[0] + g[k].v * o[1]);
+    }
+    const fdem::RockEnergies e = rock_.energies();
+    file_.row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{:.6e},{:.6e}", gas_.time(), pm, pmin, pmax,
+                          sm, smin, smax, e.broken_joints, e.crack_length, out_p, out_speed));
+    if (first_crack_ < 0 && e.broken_joints > 0) first_crack_ = gas_.time();
+    if (ejection_ < 0 && out_p > 2 * p_ambient_) ejection_ = gas_.time(), ejection_speed_ = out_speed, ejection_p_ = out_p;
+  }
+
+  //! summary.txt: the events, how each is measured, and where the paper puts them.
+  void write_summary(const fdem::RockEnergies& e) const {
+    if (!active_) return;
+    const RockMeshSpec& m = c_.rock.mesh;
+    auto when = [](double t) { return t < 0 ? std::string("not reached") : fmt::format("{:.4e} s ({:.3f} ms)", t, 1e3 * t); };
+    write_atomically((std::filesystem::path(c_.gas.output_directory) / "summary.txt").string(), [&](std::ostream& out) {
+      out << fmt::format("blastsim single-hole summary at t = {:.4e} s (step {})\n\n", gas_.time(), gas_.steps());
+      out << fmt::format("first crack: {}\n  the first sample (every {:g} s) with a broken joint\n", when(first_crack_),
+                         c_.monitor_interval);
+      out << fmt::format("gas leaves the rock's outer surface: {} (paper: about 3.14 ms)\n", when(ejection_));
+      out << fmt::format("  the first sample where the gas pressure on the circle half a cell outside the rock's outer\n"
+                         "  radius ({:g} m) exceeds twice the ambient pressure ({:.4g} Pa); pressure there then {:.4g} Pa\n",
+                         m.radius, p_ambient_, ejection_p_);
+      out << fmt::format("nominal gas speed there: {} (paper: about 214 m/s)\n",
+                         ejection_ < 0 ? std::string("-") : fmt::format("{:.1f} m/s", ejection_speed_));
+      out << "  the largest outward velocity among those points at that sample\n";
+      out << fmt::format("broken joints: {}; crack length {:.4f} m; fracture energy {:.4e} J/m\n", e.broken_joints,
+                         e.crack_length, e.fracture_dissipated);
+    });
+  }
+
+  void write_checkpoint(CheckpointWriter& w) {
+    w.value("out.blasthole.events", std::array<double, 5>{next_, first_crack_, ejection_, ejection_speed_, ejection_p_});
+    w.value("out.blasthole.csv_size", active_ ? file_.size() : std::uint64_t{0});
+  }
+  void read_checkpoint(CheckpointReader& r) {
+    const std::array<double, 5> v = r.value<std::array<double, 5>>("out.blasthole.events");
+    next_ = v[0], first_crack_ = v[1], ejection_ = v[2], ejection_speed_ = v[3], ejection_p_ = v[4];
+    const std::uint64_t size = r.value<std::uint64_t>("out.blasthole.csv_size");
+    if (active_) file_.truncate_to(size);
+  }
+
+ private:
+  static constexpr int kWallPoints = 64;
+  const CoupledCaseConfig& c_;
+  cip::GasSolver& gas_;
+  fdem::RockSolver& rock_;
+  bool active_;
+  CsvSeries file_;
+  std::vector<std::array<double, 2>> points_, outward_;
+  double p_ambient_ = 0, next_ = 0, first_crack_ = -1, ejection_ = -1, ejection_speed_ = 0, ejection_p_ = 0;
+};
+
 //! The case as the checkpoint records it: the resolved input, less the keys a restart may change.
 std::string checkpoint_case_text(const CoupledCaseConfig& c) {
   std::string text;
@@ -126,6 +234,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   GasOutputs gas_out(gc, gas, log, false, resume);
   RockOutputs rock_out(c.rock, rock, resume);
   CouplingSeries series(c, gas, rock, coupler, resume);
+  BlastholeMonitor blasthole(c, gas, rock, resume);
   bool warned = false;
   // Checkpoint: everything a run needs to go on bit for bit, written with every snapshot (atomically).
   const std::string checkpoint_path = (std::filesystem::path(gc.output_directory) / "checkpoint.bin").string();
@@ -138,6 +247,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
     gas_out.write_checkpoint(w);
     rock_out.write_checkpoint(w);
     series.write_checkpoint(w);
+    blasthole.write_checkpoint(w);
     w.value("run.warned", static_cast<int>(warned));
     w.commit();
   };
@@ -150,6 +260,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
     gas_out.read_checkpoint(r);
     rock_out.read_checkpoint(r);
     series.read_checkpoint(r);
+    blasthole.read_checkpoint(r);
     warned = r.value<int>("run.warned") != 0;
     log << fmt::format("restarted from {} at step {} (t = {:.6e} s)\n", checkpoint_path, gas.steps(), gas.time());
   } else {
@@ -157,6 +268,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
     rock_out.snapshot();
     rock_out.monitor();
     series.write();
+    blasthole.sample();
     if (c.checkpoint) write_checkpoint();
   }
 
@@ -192,6 +304,8 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
                            drift, gc.drift_warning, gas.steps(), gas.time());
       }
     }
+    blasthole.sample();
+    if (snapshot) blasthole.write_summary(rock.energies());
     if (snapshot && c.checkpoint) write_checkpoint();
     const auto now = Clock::now();
     if (!options.quiet && (std::chrono::duration<double>(now - last_progress).count() >= gc.progress_interval || last)) {
@@ -204,6 +318,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   }
   const fdem::RockEnergies e = rock.energies();
   const ibm::CouplingDiagnostics d = coupler.diagnostics();
+  blasthole.write_summary(e);
   log << fmt::format("coupled: {} steps to t = {:.4e} s; {} joints broken, crack length {:.4f} m; gas work on the rock "
                      "{:.4e} J/m\n", gas.steps(), gas.time(), e.broken_joints, e.crack_length, d.gas_work_on_rock);
 }

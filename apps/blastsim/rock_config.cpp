@@ -143,6 +143,7 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
   out.finish();
 
   TableReader monitor = root.table("monitor");
+  c.monitor_interval = monitor.number("interval", "s", Range::positive(), 1e-6);
   for (TableReader& r : monitor.table_array("region")) {
     MonitorRegion m;
     m.name = r.text("name", {});
