@@ -132,3 +132,79 @@ TEST_CASE("A coupled run killed and restarted from its checkpoint ends byte for 
   // A checkpoint of another case is refused, naming the difference.
   CHECK_THROWS_WITH(app::run_coupled_case(config(b, {"gas.courant=0.2"}), log, restart), Catch::Contains("gas.courant"));
 }
+
+namespace {
+//! A small single-hole blast: the bundled case's materials and gas states, a 100 mm disc of the paper's rock
+//! with a 20 mm hole, 2.5 mm cells, 4 mm triangles.
+std::string small_blast_text(const fs::path& out, double end) {
+  std::ostringstream s;
+  s << "[domain]\nnx = 96\nny = 96\nx_min = -0.12\nx_max = 0.12\ny_min = -0.12\ny_max = 0.12\n"
+    << "[gas.boundary]\nleft = \"outflow\"\nright = \"outflow\"\nbottom = \"outflow\"\ntop = \"outflow\"\n"
+    << "[gas.ambient]\ndensity = 1.20\ninternal_energy = 2.09e5\n"
+    << "[[gas.region]]\nshape = \"circle\"\ncenter = [0.0, 0.0]\nradius = 0.024\ndensity = 163.0\ninternal_energy = 4.29e5\n"
+    << "[rock]\npreset = \"paper_table2\"\n"
+    << "[rock.mesh]\nshape = \"disc_with_hole\"\ncenter = [0.0, 0.0]\nradius = 0.1\nhole_radius = 0.02\nelement_size = 0.004\n"
+    << "[time]\nend = " << end << "\n"
+    << "[output]\ndirectory = \"" << out.string() << "\"\ninterval = " << end / 2 << "\nmonitor_interval = 10\n"
+    << "vtk = false\nprogress_interval = 0.0\n"
+    << "[[monitor.region]]\nname = \"disc\"\nshape = \"circle\"\ncenter = [0.0, 0.0]\nradius = 0.1\n"
+    << "[[monitor.region]]\nname = \"hole\"\nshape = \"circle\"\ncenter = [0.0, 0.0]\nradius = 0.025\n";
+  return s.str();
+}
+
+//! All rows of a CSV file, columns by header name.
+std::map<std::string, std::vector<double>> all_rows(const fs::path& p) {
+  std::ifstream in(p);
+  std::string header, line;
+  std::getline(in, header);
+  std::vector<std::string> names;
+  std::stringstream h(header);
+  for (std::string n; std::getline(h, n, ',');) names.push_back(n);
+  std::map<std::string, std::vector<double>> cols;
+  while (std::getline(in, line)) {
+    std::stringstream v(line);
+    std::string value;
+    for (size_t k = 0; k < names.size() && std::getline(v, value, ','); ++k) cols[names[k]].push_back(std::stod(value));
+  }
+  return cols;
+}
+}  // namespace
+
+TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy budget, cracks that take gas",
+          "[app][coupled][blast]") {
+  const fs::path out = fresh_dir("blast");
+  const double end = 4e-4;
+  const app::CoupledCaseConfig c = app::read_coupled_case(toml::parse(small_blast_text(out, end)));
+  std::ostringstream log;
+  app::run_coupled_case(c, log);
+  INFO(log.str());
+  // S1: before the first crack, the gas pressure around the hole wall and the rock's radial stress at the wall
+  // (45-degree sector means) are symmetric within 5 %, and they agree (fluid pressure = radial stress).
+  const auto wall = all_rows(out / "wall_series.csv");
+  size_t before = 0;
+  while (before + 1 < wall.at("broken_joints").size() && wall.at("broken_joints")[before + 1] == 0) ++before;
+  const double t1 = wall.at("time_s")[before], p_mean = wall.at("gas_pressure_wall_mean_Pa")[before];
+  const double p_spread = (wall.at("gas_pressure_wall_max_Pa")[before] - wall.at("gas_pressure_wall_min_Pa")[before]) / p_mean;
+  const double s_spread = wall.at("rock_radial_stress_wall_sector_spread")[before];
+  const double s_mean = wall.at("rock_radial_stress_wall_mean_Pa")[before];
+  std::printf("blast S1 at %.1f us (last sample before the first crack): gas pressure at the wall %.4e Pa (spread %.2f %%), "
+              "rock radial stress %.4e Pa (sector spread %.2f %%)\n", 1e6 * t1, p_mean, 100 * p_spread, s_mean, 100 * s_spread);
+  CHECK(p_spread < 0.05);
+  CHECK(s_spread < 0.05);
+  // S4: the budget of gas + rock against the energy the gas gave the rock (the stricter yardstick: against
+  // the initial energy of the hole's gas the residual is smaller still).
+  const std::map<std::string, double> last = last_row(out / "coupling_series.csv");
+  const double work = last.at("gas_work_on_rock_J_per_m"), residual = last.at("budget_residual_J_per_m");
+  std::printf("blast S4 at %.0f us: gas work on the rock %.4e J/m, budget residual %.3e J/m (%.2f %%); %.0f joints broken, "
+              "crack length %.3f m\n", 1e6 * last.at("time_s"), work, residual, 100 * residual / work,
+              last.at("broken_joints"), last.at("crack_length_m"));
+  CHECK(std::fabs(residual) < 0.05 * work);
+  // Cracks appear, and gas enters them: gas mass in the disc outside the hole region (r > 25 mm) grows
+  // well beyond the air that was there.
+  const auto cs = all_rows(out / "coupling_series.csv");
+  const double annulus0 = cs.at("disc_mass_kg_per_m").front() - cs.at("hole_mass_kg_per_m").front();
+  const double annulus1 = cs.at("disc_mass_kg_per_m").back() - cs.at("hole_mass_kg_per_m").back();
+  std::printf("blast: gas in the disc outside the hole %.3e -> %.3e kg/m\n", annulus0, annulus1);
+  CHECK(last.at("broken_joints") > 10);
+  CHECK(annulus1 > 3 * annulus0);
+}
