@@ -9,6 +9,7 @@
 #include "rock_outputs.hpp"
 
 #include <chrono>
+#include <optional>
 
 namespace blastsim::app {
 
@@ -81,19 +82,17 @@ class CouplingSeries {
 };
 
 //! Blasthole monitor, for a rock made as a disc with a hole (the single-hole blast): wall_series.csv (gas
-//! pressure just inside the hole wall against the rock's radial stress at the wall, S1 / the paper's Fig. 4b;
-//! the gas at the rock's outer surface) every monitor.interval, and summary.txt with the events the paper
+//! pressure just inside the hole wall, mean, min and max of 64 points, against the rock's radial stress at the
+//! wall, mean, min and max of 8 sector values, and their spread: S1 / the paper's Fig. 4b; the gas at the
+//! rock's outer surface) every monitor.interval, and summary.txt with the events the paper
 //! reports: the first crack, and the first time detonation gas leaves the outer surface, with its speed.
 class BlastholeMonitor {
  public:
   BlastholeMonitor(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, bool resume)
       : c_(c), gas_(gas), rock_(rock), active_(c.rock.mesh.shape == "disc_with_hole"),
-        file_((make_output_dir(c.gas.output_directory) / "wall_series.csv").string(),
-              "time_s,gas_pressure_wall_mean_Pa,gas_pressure_wall_min_Pa,gas_pressure_wall_max_Pa,"
-              "rock_radial_stress_wall_mean_Pa,rock_radial_stress_wall_min_Pa,rock_radial_stress_wall_max_Pa,"
-              "rock_radial_stress_wall_sector_spread,broken_joints,crack_length_m,outer_surface_gas_pressure_max_Pa,"
-              "outer_surface_gas_speed_max_m_per_s",
-              resume || !active_) {
+        file_(active_ ? std::optional<CsvSeries>(std::in_place, (make_output_dir(c.gas.output_directory) / "wall_series.csv").string(),
+                                                 wall_header(), resume)
+                      : std::nullopt) {
     const RockMeshSpec& m = c.rock.mesh;
     const double h = std::min(c.gas.grid.dx, c.gas.grid.dy);
     // Gas at the wall: 1.5 cells inside it, where the bilinear stencil of the samples holds only hole cells
@@ -155,7 +154,7 @@ class BlastholeMonitor {
       if (g[k].p > 2 * p_ambient_) out_speed = std::max(out_speed, g[k].u * o[0] + g[k].v * o[1]);
     }
     const fdem::RockEnergies e = rock_.energies();
-    file_.row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e}", gas_.time(), pm, pmin,
+    file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e}", gas_.time(), pm, pmin,
                           pmax, sm, smin, smax, spread, e.broken_joints, e.crack_length, out_p, out_speed));
     if (first_crack_ < 0 && e.broken_joints > 0) first_crack_ = gas_.time();
     if (ejection_ < 0 && out_p > 2 * p_ambient_) ejection_ = gas_.time(), ejection_speed_ = out_speed, ejection_p_ = out_p;
@@ -184,13 +183,13 @@ class BlastholeMonitor {
 
   void write_checkpoint(CheckpointWriter& w) {
     w.value("out.blasthole.events", std::array<double, 5>{next_, first_crack_, ejection_, ejection_speed_, ejection_p_});
-    w.value("out.blasthole.csv_size", active_ ? file_.size() : std::uint64_t{0});
+    w.value("out.blasthole.csv_size", active_ ? file_->size() : std::uint64_t{0});
   }
   void read_checkpoint(CheckpointReader& r) {
     const std::array<double, 5> v = r.value<std::array<double, 5>>("out.blasthole.events");
     next_ = v[0], first_crack_ = v[1], ejection_ = v[2], ejection_speed_ = v[3], ejection_p_ = v[4];
     const std::uint64_t size = r.value<std::uint64_t>("out.blasthole.csv_size");
-    if (active_) file_.truncate_to(size);
+    if (active_) file_->truncate_to(size);
   }
 
  private:
@@ -199,7 +198,14 @@ class BlastholeMonitor {
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   bool active_;
-  CsvSeries file_;
+  std::optional<CsvSeries> file_;  // only for a disc with a hole
+
+  static std::string wall_header() {
+    return "time_s,gas_pressure_wall_mean_Pa,gas_pressure_wall_min_Pa,gas_pressure_wall_max_Pa,"
+           "rock_radial_stress_wall_mean_Pa,rock_radial_stress_wall_min_Pa,rock_radial_stress_wall_max_Pa,"
+           "rock_radial_stress_wall_sector_spread,broken_joints,crack_length_m,outer_surface_gas_pressure_max_Pa,"
+           "outer_surface_gas_speed_max_m_per_s";
+  }
   std::vector<std::array<double, 2>> points_, outward_;
   double p_ambient_ = 0, next_ = 0, first_crack_ = -1, ejection_ = -1, ejection_speed_ = 0, ejection_p_ = 0;
 };
