@@ -240,7 +240,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   const CaseConfig& gc = c.gas;
   if (gc.vtk && !vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
-  RockModel model = make_rock_model(c.rock, false);
+  RockModel model = make_rock_model(c.rock);
   fdem::RockSolver& rock = *model.solver;
   const double rock_dt = rock_time_step(c.rock, rock);  // checks a fixed dt against the rock's stable step
   cip::GasSolver gas(gc.grid, gc.eos, gc.solver);

@@ -77,8 +77,8 @@ class GasOutputs {
 
   //! The output schedule, the monitor's reference and the sizes of the CSV files, for a restart.
   void write_checkpoint(CheckpointWriter& w) {
-    w.value("out.gas.counters", std::array<double, 5>{next_snapshot_, static_cast<double>(snapshot_index_),
-                                                      static_cast<double>(mass_warned_), static_cast<double>(energy_warned_), 0.0});
+    w.value("out.gas.counters", std::array<double, 4>{next_snapshot_, static_cast<double>(snapshot_index_),
+                                                      static_cast<double>(mass_warned_), static_cast<double>(energy_warned_)});
     w.value("out.gas.initial", initial_);
     w.host_array("out.gas.next_point", next_point_);
     std::vector<std::uint8_t> done;
@@ -90,7 +90,7 @@ class GasOutputs {
     write_pvd_checkpoint(w, "out.gas.pvd", pvd_);
   }
   void read_checkpoint(CheckpointReader& r) {
-    const std::array<double, 5> k = r.value<std::array<double, 5>>("out.gas.counters");
+    const std::array<double, 4> k = r.value<std::array<double, 4>>("out.gas.counters");
     next_snapshot_ = k[0], snapshot_index_ = static_cast<int>(k[1]), mass_warned_ = k[2] != 0, energy_warned_ = k[3] != 0;
     initial_ = r.value<cip::GasTotals>("out.gas.initial");
     next_point_ = r.host_array<double>("out.gas.next_point");

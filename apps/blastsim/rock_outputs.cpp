@@ -36,7 +36,7 @@ std::vector<int> nodes_in_box(const fdem::FdemTopology& topo, const VelocityLoad
 
 }  // namespace
 
-RockModel make_rock_model(const RockCaseConfig& c, bool apply_pressures) {
+RockModel make_rock_model(const RockCaseConfig& c) {
   RockModel m;
   m.mesh = make_mesh(c.mesh);
   m.topology = fdem::build_topology(m.mesh.mesh);
@@ -58,7 +58,7 @@ RockModel make_rock_model(const RockCaseConfig& c, bool apply_pressures) {
                                    l.max[0], l.min[1], l.max[1]));
     solver.prescribe_velocity(nodes, l.along_x, l.along_y, l.velocity[0], l.velocity[1]);
   }
-  for (size_t k = 0; apply_pressures && k < c.pressures.size(); ++k) {
+  for (size_t k = 0; k < c.pressures.size(); ++k) {
     const PressureLoad& l = c.pressures[k];
     const auto group = mesh.boundary_groups.find(l.boundary);
     if (group == mesh.boundary_groups.end()) {

@@ -17,13 +17,13 @@
 namespace blastsim::app {
 
 //! The mesh, its FDEM topology and the solver with the case's initial velocities, prescribed velocities and
-//! (when `apply_pressures`) boundary pressures.
+//! boundary pressures (none in a coupled case: its input refuses them).
 struct RockModel {
   fdem::NamedMesh mesh;
   fdem::FdemTopology topology;
   std::unique_ptr<fdem::RockSolver> solver;
 };
-RockModel make_rock_model(const RockCaseConfig& c, bool apply_pressures);
+RockModel make_rock_model(const RockCaseConfig& c);
 
 //! dt [s] of the rock: the fixed time.dt (refused above the stable step, naming it) or step_fraction x stable.
 double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver);

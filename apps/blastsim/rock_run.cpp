@@ -19,7 +19,7 @@ double half_cosine_ramp(double t, double T) { return T <= 0 || t >= T ? 1.0 : 0.
 }  // namespace
 
 void run_rock_case(const RockCaseConfig& c, std::ostream& log, const RunOptions& options) {
-  RockModel model = make_rock_model(c, true);
+  RockModel model = make_rock_model(c);
   fdem::RockSolver& solver = *model.solver;
   const double dt = rock_time_step(c, solver);
   log << fmt::format("rock: {} triangles, {} joints, {} boundary edges; stable step {:.4g} s, dt {:.4g} s, {} steps\n",
