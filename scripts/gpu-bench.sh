@@ -40,6 +40,11 @@ compute-sanitizer --tool memcheck --error-exitcode 9 build-cuda/tests/ibm/test_i
   >> "$out/memcheck.log" 2>&1
 note "compute-sanitizer memcheck (test_ibm [masks],[transitions],[I1],[I2]): rc=$? $(grep -E 'ERROR SUMMARY' "$out/memcheck.log" | tail -1)"
 
+# memcheck on a small coupled case (the single-hole step, ring mesh, 96 x 96 cells: every coupling kernel)
+compute-sanitizer --tool memcheck build-cuda/apps/bench/blastsim-bench-coupled --cases=96:0.05 --steps=2 --warmup=3 \
+  > "$out/memcheck_coupled.log" 2>&1
+note "compute-sanitizer memcheck (coupled single-hole, 96^2): rc=$? $(grep -E 'ERROR SUMMARY' "$out/memcheck_coupled.log" | tail -1)"
+
 sizes=${GPU_BENCH_SIZES:-1250,2500,5001}
 build-cuda/apps/bench/blastsim-bench-cip --sizes="$sizes" --steps=20 > "$out/bench_cip.log" 2>&1
 note "bench_cip rc=$?"
@@ -49,6 +54,13 @@ if [ -x build-cuda/apps/bench/blastsim-bench-fdem ]; then
     > "$out/bench_fdem.log" 2>&1
   note "bench_fdem rc=$?"
   cat "$out/bench_fdem.log" >> "$summary"
+fi
+if [ -x build-cuda/apps/bench/blastsim-bench-coupled ]; then
+  # The coupled single-hole step phase by phase (ring mesh: no Gmsh needed): quarter size and paper size.
+  build-cuda/apps/bench/blastsim-bench-coupled --cases="${GPU_COUPLED_CASES:-2501:0.019,5001:0.0095}" --steps=20 \
+    > "$out/bench_coupled.log" 2>&1
+  note "bench_coupled rc=$?"
+  cat "$out/bench_coupled.log" >> "$summary"
 fi
 
 # Per-kernel time and DRAM bytes of a few conservative steps at the largest size (Nsight Compute).

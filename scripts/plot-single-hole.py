@@ -176,8 +176,10 @@ def series_plots(out):
                        ("rock_kinetic_J_per_m", "rock kinetic"), ("rock_strain_J_per_m", "rock strain"),
                        ("fracture_dissipated_J_per_m", "fracture"), ("contact_work_J_per_m", "contact + friction"),
                        ("gas_energy_out_J_per_m", "gas energy out of the grid"),
+                       ("immersed_face_work_J_per_m", "work of the moving immersed faces on the gas"),
                        ("budget_residual_J_per_m", "budget residual")):
-        ax.plot(t, cs[key] / 1e3, label=label)
+        if key in cs:
+            ax.plot(t, cs[key] / 1e3, label=label)
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("[kJ/m]")
     ax.legend(fontsize=8)

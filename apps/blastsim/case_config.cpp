@@ -156,6 +156,13 @@ OutputBasics read_output_basics(TableReader& out, long long monitor_default) {
   b.directory = out.text("directory", {}, std::string("output"));
   if (b.directory.empty()) throw InputError("output.directory must not be empty");
   b.interval = out.number("interval", "s", Range::non_negative(), 0.0);
+  if (out.has("times")) {
+    b.times = out.number_list("times", "s", Range::positive());
+    for (size_t k = 1; k < b.times.size(); ++k)
+      if (!(b.times[k] > b.times[k - 1]))
+        throw InputError(fmt::format("output.times: {} s follows {} s: the times must be given in ascending order",
+                                     b.times[k], b.times[k - 1]));
+  }
   b.vtk = out.boolean("vtk", true);
   b.progress_interval = out.number("progress_interval", "s (wall)", Range::non_negative(), 2.0);
   b.monitor_interval = out.integer("monitor_interval", "steps", 1, monitor_default);

@@ -55,6 +55,7 @@ struct CaseConfig {
   // [output]
   std::string output_directory;
   double output_interval = 0.0;         //!< [s] between field snapshots; 0: start and end only
+  std::vector<double> output_times;     //!< [s] extra snapshots (output.times), ascending
   bool vtk = true;
   double progress_interval = 2.0;       //!< [s of wall time] between progress lines
   long long monitor_interval = 1;       //!< steps between rows of the conservation monitor

@@ -24,6 +24,7 @@ CaseConfig read_case(const toml::table& input);
 struct OutputBasics {
   std::string directory;
   double interval = 0;
+  std::vector<double> times;  //!< output.times: extra snapshot times [s], ascending
   bool vtk = true;
   double progress_interval = 2;
   long long monitor_interval = 1;
@@ -35,6 +36,7 @@ template <class Config>
 void assign_output_basics(const OutputBasics& b, Config& c) {
   c.output_directory = b.directory;
   c.output_interval = b.interval;
+  c.output_times = b.times;
   c.vtk = b.vtk;
   c.progress_interval = b.progress_interval;
   c.monitor_interval = b.monitor_interval;

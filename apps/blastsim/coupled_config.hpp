@@ -22,6 +22,9 @@ struct CoupledCaseConfig {
   RockCaseConfig rock;  //!< [rock]; time and output fields copied likewise
   std::vector<MonitorRegion> regions;  //!< [[monitor.region]]
   bool checkpoint = true;              //!< output.checkpoint: checkpoint.bin with every snapshot
+  //! time.rock_subcycling: the gas steps at its own Courant limit and the rock takes as many steps of at most
+  //! its stable step as fill each gas step (false: one dt for both, the paper's scheme).
+  bool rock_subcycling = false;
   double monitor_interval = 1e-6;      //!< monitor.interval [s]: wall_series.csv (disc-with-hole rock)
   std::vector<std::string> echo;
 };

@@ -77,8 +77,9 @@ class GasOutputs {
 
   //! The output schedule, the monitor's reference and the sizes of the CSV files, for a restart.
   void write_checkpoint(CheckpointWriter& w) {
-    w.value("out.gas.counters", std::array<double, 4>{next_snapshot_, static_cast<double>(snapshot_index_),
-                                                      static_cast<double>(mass_warned_), static_cast<double>(energy_warned_)});
+    w.value("out.gas.counters", std::array<double, 5>{next_snapshot_, static_cast<double>(snapshot_index_),
+                                                      static_cast<double>(mass_warned_), static_cast<double>(energy_warned_),
+                                                      static_cast<double>(next_time_)});
     w.value("out.gas.initial", initial_);
     w.host_array("out.gas.next_point", next_point_);
     std::vector<std::uint8_t> done;
@@ -90,8 +91,9 @@ class GasOutputs {
     write_pvd_checkpoint(w, "out.gas.pvd", pvd_);
   }
   void read_checkpoint(CheckpointReader& r) {
-    const std::array<double, 4> k = r.value<std::array<double, 4>>("out.gas.counters");
+    const std::array<double, 5> k = r.value<std::array<double, 5>>("out.gas.counters");
     next_snapshot_ = k[0], snapshot_index_ = static_cast<int>(k[1]), mass_warned_ = k[2] != 0, energy_warned_ = k[3] != 0;
+    next_time_ = static_cast<size_t>(k[4]);
     initial_ = r.value<cip::GasTotals>("out.gas.initial");
     next_point_ = r.host_array<double>("out.gas.next_point");
     const std::vector<std::uint8_t> done = r.host_array<std::uint8_t>("out.gas.line_done");
@@ -110,6 +112,7 @@ class GasOutputs {
   double next_event(double t) const {
     double next = c_.end_time;
     if (c_.output_interval > 0) next = std::min(next, next_snapshot_);
+    if (next_time_ < c_.output_times.size()) next = std::min(next, c_.output_times[next_time_]);
     for (size_t k = 0; k < c_.line_probes.size(); ++k)
       for (size_t m = 0; m < c_.line_probes[k].times.size(); ++m)
         if (!line_done_[k][m] && c_.line_probes[k].times[m] > t) next = std::min(next, c_.line_probes[k].times[m]);
@@ -120,11 +123,13 @@ class GasOutputs {
   //! Returns true when a snapshot was due (and written, when output.vtk).
   bool write_due(double dt, bool force_snapshot) {
     const double t = solver_.time(), tol = 1e-9 * c_.end_time;
-    const bool snapshot_due = force_snapshot || (c_.output_interval > 0 && t >= next_snapshot_ - tol);
+    const bool listed_due = next_time_ < c_.output_times.size() && t >= c_.output_times[next_time_] - tol;
+    const bool snapshot_due = force_snapshot || listed_due || (c_.output_interval > 0 && t >= next_snapshot_ - tol);
     if (snapshot_due) {
       snapshot();
       if (c_.output_interval > 0)
         while (next_snapshot_ <= t + tol) next_snapshot_ += c_.output_interval;
+      while (next_time_ < c_.output_times.size() && c_.output_times[next_time_] <= t + tol) ++next_time_;
     }
     for (size_t k = 0; k < c_.line_probes.size(); ++k)
       for (size_t m = 0; m < c_.line_probes[k].times.size(); ++m)
@@ -212,6 +217,7 @@ class GasOutputs {
   std::vector<double> next_point_;
   std::vector<std::vector<bool>> line_done_;
   double next_snapshot_ = 0.0;
+  size_t next_time_ = 0;  // first of c_.output_times not yet written
   int snapshot_index_ = 0;
 };
 

@@ -43,6 +43,10 @@ RockMeshSpec read_mesh(TableReader& t) {
     return s;
   }
   s.element_size = t.number("element_size", "m", Range::positive());
+  s.mesher = t.text("mesher", {"gmsh", "rings"}, std::string("gmsh"));
+  if (s.mesher == "rings" && s.shape != "disc_with_hole")
+    throw InputError(fmt::format("{}.mesher = \"rings\" meshes only shape = \"disc_with_hole\" (this mesh is \"{}\"): use "
+                                 "mesher = \"gmsh\"", t.path(), s.shape));
   if (s.shape == "rectangle" || s.shape == "rectangle_with_hole") {
     s.min = t.pair("min", "m");
     s.max = t.pair("max", "m");
@@ -132,6 +136,8 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
   c.gas.fixed_dt = c.rock.fixed_dt = time.optional_number("dt", "s", Range::positive());
   c.rock.step_fraction = time.number("step_fraction", "", Range::half_open(0.0, 1.0), 0.9);
   c.gas.max_steps = time.integer("max_steps", "", 0, 0);
+  c.rock_subcycling = time.boolean("rock_subcycling", false);
+  if (c.rock_subcycling) c.rock.fixed_dt.reset();  // time.dt is the gas step; the rock divides it (docs/coupling.md)
   time.finish();
 
   TableReader out = root.table("output");

@@ -20,6 +20,7 @@ struct RockMeshSpec {
   double radius = 0, hole_radius = 0;  //!< [m]
   std::array<double, 2> min{}, max{};  //!< [m] rectangles
   std::string file;                  //!< .msh path (shape = file)
+  std::string mesher = "gmsh";       //!< gmsh | rings (disc_with_hole without Gmsh: fdem::ring_disc_with_hole)
 };
 
 //! Prescribed velocity of every node whose initial position lies in the box [min, max].
@@ -48,6 +49,7 @@ struct RockCaseConfig {
   double step_fraction = 0.9;      //!< dt = step_fraction x stable step when no dt is given
   std::string output_directory;
   double output_interval = 0;      //!< [s] between .vtu snapshots (0: start and end)
+  std::vector<double> output_times;  //!< [s] extra snapshots (output.times; coupled cases)
   bool vtk = true;
   double progress_interval = 2.0;  //!< [s wall]
   long long monitor_interval = 10;  //!< steps between rows of rock_series.csv

@@ -30,6 +30,7 @@ void run_rock_case(const RockCaseConfig& c, std::ostream& log, const RunOptions&
   out.snapshot();
   out.monitor();
   double next_snapshot = c.output_interval > 0 ? c.output_interval : c.end_time;
+  size_t next_time = 0;  // output.times: snapshots at the first step at or after each (the rock's dt is fixed)
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   const double tol = 1e-9 * c.end_time;
@@ -38,9 +39,11 @@ void run_rock_case(const RockCaseConfig& c, std::ostream& log, const RunOptions&
     if (c.pressure_ramp_time > 0) solver.set_pressure_scale(half_cosine_ramp(solver.time(), c.pressure_ramp_time));
     solver.step(step);
     if (solver.steps() % c.monitor_interval == 0) out.monitor();
-    if (solver.time() >= next_snapshot - tol && solver.time() < c.end_time - tol) {
+    const bool listed = next_time < c.output_times.size() && solver.time() >= c.output_times[next_time] - tol;
+    if ((solver.time() >= next_snapshot - tol || listed) && solver.time() < c.end_time - tol) {
       out.snapshot();
-      while (next_snapshot <= solver.time() + tol) next_snapshot += c.output_interval;
+      while (c.output_interval > 0 && next_snapshot <= solver.time() + tol) next_snapshot += c.output_interval;
+      while (next_time < c.output_times.size() && c.output_times[next_time] <= solver.time() + tol) ++next_time;
     }
     const auto now = std::chrono::steady_clock::now();
     if (!options.quiet && std::chrono::duration<double>(now - last_progress).count() >= c.progress_interval) {

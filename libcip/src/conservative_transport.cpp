@@ -134,6 +134,7 @@ struct MomentumKernel {
   Field2D<const std::uint8_t> prescribed;
   Field2D<const double> imposed;
   Field2D<double> dissipation;
+  Field2D<double> solid_work;  // cumulative energy the solid gave this face's gas [J/m3]
   int nx, ny;
   bool periodic_x, periodic_y;
   bool wall_low, wall_high;  // walls on the two sides normal to this face set
@@ -183,12 +184,22 @@ struct MomentumKernel {
       }
     }
     // A wall face stays at rest and an immersed (prescribed) face moves with the solid: the kinetic energy
-    // carried into its dual cell that the face cannot keep becomes heat, as for any face.
+    // carried into its dual cell that the face cannot keep becomes heat, as for any face. At a moving immersed
+    // face the balance can come out negative (the solid accelerates the gas; the dual cell reaches into an
+    // inactive cell whose ambient density does not follow the transport): that energy is not taken from the
+    // gas's internal energy (beside a fast crack jet it drove a cold cell's negative) but counted as work of
+    // the solid on the gas, summed in `solid_work` for the coupled budget (docs/gas-solver.md).
     const int k = axis == 0 ? i : j, n_cells = axis == 0 ? nx : ny;
     const bool wall_face = (k == 0 && wall_low) || (k == n_cells && wall_high);
     const double w_new = prescribed(i, j) ? imposed(i, j) : (wall_face ? 0.0 : (m_old * w0 - dt * flux) / m_new);
     out(i, j) = w_new;
-    dissipation(i, j) = (0.5 * m_old * w0 * w0 - dt * ke_flux) - 0.5 * m_new * w_new * w_new;
+    const double balance = (0.5 * m_old * w0 * w0 - dt * ke_flux) - 0.5 * m_new * w_new * w_new;  // [J/m3]
+    if (prescribed(i, j) && !wall_face && w_new != 0.0 && balance < 0) {  // a face at rest does no work
+      dissipation(i, j) = 0.0;
+      solid_work(i, j) -= balance;
+    } else {
+      dissipation(i, j) = balance;
+    }
   }
 };
 
@@ -244,10 +255,12 @@ void GasSolver::transport_conservatively(double dt) {
   const bool wl = side[left] == BoundaryKind::wall, wr = side[right] == BoundaryKind::wall;
   const bool wb = side[bottom] == BoundaryKind::wall, wt = side[top] == BoundaryKind::wall;
   for_each_cell("cip.transport.momentum_u", px || wl ? 0 : 1, wr ? g.nx + 1 : g.nx, 0, g.ny,
-                detail::MomentumKernel{0, s, v.now, Fx, Fy, v.u_prescribed, v.u_imposed, Du, g.nx, g.ny, px, py, wl, wr, dt, g.dx, g.dy,
+                detail::MomentumKernel{0, s, v.now, Fx, Fy, v.u_prescribed, v.u_imposed, Du,
+                                       make_field_view(solid_work_u_, sh), g.nx, g.ny, px, py, wl, wr, dt, g.dx, g.dy,
                                        options_.limiter});
   for_each_cell("cip.transport.momentum_v", 0, g.nx, py || wb ? 0 : 1, wt ? g.ny + 1 : g.ny,
-                detail::MomentumKernel{1, s, v.now, Fx, Fy, v.v_prescribed, v.v_imposed, Dv, g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy,
+                detail::MomentumKernel{1, s, v.now, Fx, Fy, v.v_prescribed, v.v_imposed, Dv,
+                                       make_field_view(solid_work_v_, sh), g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy,
                                        options_.limiter});
   for_each_cell("cip.transport.energy", 0, g.nx, 0, g.ny,
                 detail::EnergyUpdateKernel{v.now, v.active, rho_e, Du, Dv, g.nx, g.ny, px, py});

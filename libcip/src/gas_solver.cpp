@@ -445,7 +445,8 @@ GasSolver::GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasS
   immersed_.resize(n);
   pressure_.assign(n, 0.0);
   for (DeviceVector<double>* w : {&mass_flux_x_, &mass_flux_y_, &energy_flux_x_, &energy_flux_y_,
-                                 &internal_energy_density_, &dissipation_u_, &dissipation_v_})
+                                 &internal_energy_density_, &dissipation_u_, &dissipation_v_, &solid_work_u_,
+                                 &solid_work_v_})
     w->assign(n, 0.0);
   outflow_pressure_.assign(2 * static_cast<size_t>(grid.nx + grid.ny), 0.0);
   outflow_velocity_.assign(2 * static_cast<size_t>(grid.nx + grid.ny), 0.0);
@@ -490,6 +491,8 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
   time_ = 0.0;
   steps_ = 0;
   outflow_ = BoundaryOutflow{};
+  thrust::fill(thrust::device, solid_work_u_.begin(), solid_work_u_.end(), 0.0);
+  thrust::fill(thrust::device, solid_work_v_.begin(), solid_work_v_.end(), 0.0);
   apply_boundaries();
   // Derivatives: zero in uniform regions and next to jumps between them (the paper's Table 1), centred
   // differences where the initial data are smooth (zero there would cost CIP its order of accuracy).
@@ -714,6 +717,16 @@ void GasSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("gas.time", time_);
   w.value("gas.steps", steps_);
   w.value("gas.outflow", outflow_);
+  w.array("gas.solid_work_u", solid_work_u_);
+  w.array("gas.solid_work_v", solid_work_v_);
+}
+
+double GasSolver::immersed_face_work() {
+  const double* wu = device_ptr(solid_work_u_);
+  const double* wv = device_ptr(solid_work_v_);
+  return grid_.dx * grid_.dy *
+         reduce_sum("cip.solid_work", static_cast<index_t>(solid_work_u_.size()), 0.0,
+                    [=] BLAST_HD(index_t k) { return wu[k] + wv[k]; });
 }
 
 void GasSolver::read_checkpoint(CheckpointReader& r) {
@@ -727,6 +740,8 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   time_ = r.value<double>("gas.time");
   steps_ = r.value<long long>("gas.steps");
   outflow_ = r.value<BoundaryOutflow>("gas.outflow");
+  r.array("gas.solid_work_u", solid_work_u_, n);
+  r.array("gas.solid_work_v", solid_work_v_, n);
 }
 
 }  // namespace blastsim::cip

@@ -118,3 +118,46 @@ TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y
 }
 
 }  // namespace blastsim::fdem
+
+namespace blastsim::fdem {
+
+NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, double h) {
+  if (!(r_hole > 0) || !(r > r_hole) || !(h > 0) || !(h < r - r_hole))
+    throw InputError("ring_disc_with_hole: need 0 < hole radius < radius and 0 < element size < radius - hole radius");
+  const int rings = std::max(1, static_cast<int>(std::lround((r - r_hole) / h)));
+  NamedMesh out;
+  std::vector<int> first(rings + 2, 0), count(rings + 1, 0);
+  std::vector<double> offset(rings + 1, 0.0);
+  for (int k = 0; k <= rings; ++k) {  // circle k: radius r_hole + k (r - r_hole) / rings
+    const double radius = r_hole + k * (r - r_hole) / rings;
+    count[k] = std::max(6, static_cast<int>(std::lround(2 * M_PI * radius / h)));
+    offset[k] = k % 2 ? M_PI / count[k] : 0.0;
+    first[k + 1] = first[k] + count[k];
+    for (int m = 0; m < count[k]; ++m) {
+      const double th = offset[k] + 2 * M_PI * m / count[k];
+      out.mesh.vertices.push_back({cx + radius * std::cos(th), cy + radius * std::sin(th)});
+    }
+  }
+  auto vertex = [&](int k, int m) { return first[k] + m % count[k]; };
+  for (int k = 0; k < rings; ++k) {  // merge walk between circle k (inner) and k + 1 (outer), by angle
+    const int ni = count[k], no = count[k + 1];
+    auto angle = [&](int c, int m) { return offset[c] + 2 * M_PI * m / count[c]; };
+    int i = 0, o = 0;
+    while (i < ni || o < no) {
+      const bool advance_outer = i == ni || (o < no && angle(k + 1, o + 1) <= angle(k, i + 1));
+      if (advance_outer) {
+        out.mesh.triangles.push_back({vertex(k, i), vertex(k + 1, o), vertex(k + 1, o + 1)});
+        ++o;
+      } else {
+        out.mesh.triangles.push_back({vertex(k, i), vertex(k + 1, o), vertex(k, i + 1)});
+        ++i;
+      }
+    }
+  }
+  for (int m = 0; m < count[0]; ++m) out.boundary_groups["hole"].push_back({vertex(0, m + 1), vertex(0, m)});
+  for (int m = 0; m < count[rings]; ++m) out.boundary_groups["outer"].push_back({vertex(rings, m), vertex(rings, m + 1)});
+  check_mesh(out.mesh);
+  return out;
+}
+
+}  // namespace blastsim::fdem

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace blastsim::ibm {
 
@@ -267,11 +268,13 @@ void GasRockCoupler::gas_to_rock() {
                                     eos.pressure(ambient_.density, ambient_.internal_energy)});
 }
 
-void GasRockCoupler::step(double dt) {
+void GasRockCoupler::step(double dt, int rock_substeps) {
+  if (rock_substeps < 1) throw std::invalid_argument("GasRockCoupler::step: rock_substeps must be at least 1");
   rock_to_gas();
   gas_.step(dt);
   gas_to_rock();
-  rock_.step(dt);
+  const double rock_dt = dt / rock_substeps;
+  for (int k = 0; k < rock_substeps; ++k) rock_.step(rock_dt);
 }
 
 double GasRockCoupler::stable_dt(double courant) { return std::min(gas_.courant_dt(courant), rock_.stable_dt()); }

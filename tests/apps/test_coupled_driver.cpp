@@ -79,12 +79,16 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(read({"monitor.region.0.name=\"a b\""}), Catch::Contains("monitor.region"));
   CHECK_THROWS_WITH(read({"rock.youngs_modulus=0"}), Catch::Contains("rock.youngs_modulus"));
   CHECK_THROWS_WITH(read({"gas.courant=2"}), Catch::Contains("gas.courant"));
-  // A fixed dt above the rock's stable step is refused at the start, naming the stable value.
+  CHECK_THROWS_WITH(read({"output.times=[2e-5, 1e-5]"}), Catch::Contains("ascending"));
+  CHECK_THROWS_WITH(read({"rock.mesh.mesher=\"rings\"", "rock.mesh.shape=\"disc\""}), Catch::Contains("rock.mesh.mesher"));
+  // With one dt for both solvers, a fixed dt above the rock's stable step is refused at the start, naming
+  // the stable value.
   std::ostringstream log;
   const fs::path out = fresh_dir("coupled_bad");
   std::vector<std::string> o = small_case(out);
+  o.push_back("time.rock_subcycling=false");
   o.push_back("time.dt=1e-5");
-  CHECK_THROWS_WITH(app::run_coupled_case(read(o), log), Catch::Contains("time.dt"));
+  CHECK_THROWS_WITH(app::run_coupled_case(read(o), log), Catch::Contains("exceeds the rock's stable step"));
 }
 
 namespace {

@@ -1,10 +1,13 @@
 //! \file test_topology.cpp
 //! \brief FDEM topology from a mesh (owned nodes, joints, boundary edges) and the bad-mesh errors.
 #include "blastsim/core/error.hpp"
+#include "blastsim/fdem/gmsh_mesh.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "catch.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using namespace blastsim;
 using namespace blastsim::fdem;
@@ -61,4 +64,37 @@ TEST_CASE("Bad meshes are refused with a clear error", "[fdem][mesh][bad]") {
     CHECK_THROWS_WITH(check_mesh(square), Catch::Contains("vertex index 17"));
   }
   SECTION("empty mesh") { CHECK_THROWS_AS(check_mesh(TriangleMesh{}), InputError); }
+}
+
+TEST_CASE("Ring mesh of a disc with a hole (no Gmsh): area, boundary groups, element shape", "[fdem][mesh]") {
+  const double R = 0.93, a = 0.05;
+  for (double h : {0.03, 0.0095}) {
+    const NamedMesh m = ring_disc_with_hole(0.0, 0.0, R, a, h);
+    const FdemTopology topo = build_topology(m.mesh);
+    double area = 0, worst_angle = M_PI, longest = 0;
+    for (const auto& t : m.mesh.triangles) {
+      std::array<std::array<double, 2>, 3> p{m.mesh.vertices[t[0]], m.mesh.vertices[t[1]], m.mesh.vertices[t[2]]};
+      area += 0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
+      for (int k = 0; k < 3; ++k) {
+        const auto& o = p[k];
+        const auto& b = p[(k + 1) % 3];
+        const auto& c = p[(k + 2) % 3];
+        const double ux = b[0] - o[0], uy = b[1] - o[1], vx = c[0] - o[0], vy = c[1] - o[1];
+        worst_angle = std::min(worst_angle, std::acos((ux * vx + uy * vy) / std::hypot(ux, uy) / std::hypot(vx, vy)));
+        longest = std::max(longest, std::hypot(ux, uy));
+      }
+    }
+    // Inscribed polygons of n sides lose pi r^2 (1 - sin(2 pi / n) n / (2 pi)) ~ (2 pi^2 / 3) r^2 / n^2 each.
+    const double exact = M_PI * (R * R - a * a);
+    std::printf("ring mesh h = %.4f m: %zu triangles, %zu joints, area %.6f vs %.6f m2 (%+.3f %%), smallest angle "
+                "%.1f deg, longest edge %.4f m; %zu hole and %zu outer edges\n", h, m.mesh.triangles.size(),
+                topo.joints.size(), area, exact, 100 * (area / exact - 1), worst_angle * 180 / M_PI, longest,
+                m.boundary_groups.at("hole").size(), m.boundary_groups.at("outer").size());
+    CHECK(std::fabs(area / exact - 1) < 2e-3);
+    CHECK(worst_angle > 30 * M_PI / 180);
+    CHECK(longest < 1.8 * h);  // a diagonal between circles whose arcs are staggered
+    CHECK(topo.boundary_edges.size() == m.boundary_groups.at("hole").size() + m.boundary_groups.at("outer").size());
+    CHECK(boundary_slots(topo, m.boundary_groups.at("hole"), "hole").size() == m.boundary_groups.at("hole").size());
+  }
+  CHECK_THROWS_WITH(ring_disc_with_hole(0, 0, 0.05, 0.1, 0.01), Catch::Contains("hole radius < radius"));
 }

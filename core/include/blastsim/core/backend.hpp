@@ -9,6 +9,9 @@
 #include "blastsim/core/macros.hpp"
 
 #include <cassert>
+#include <chrono>
+#include <map>
+#include <string>
 #include <vector>
 
 #include <thrust/device_vector.h>
@@ -21,12 +24,58 @@
 
 namespace blastsim {
 
+//! Waits until every kernel launched so far has finished (for timings; the step loop never needs it).
+inline void synchronize() {
+#if defined(__CUDACC__)
+  cudaDeviceSynchronize();
+#endif
+}
+
+//! Wall time per kernel label, for benchmarks and profiles (`blastsim --profile`, blastsim-bench-coupled).
+//! Off by default; when on, every launch through the launchers below is bracketed by synchronize(), so the
+//! times are each kernel's own (and the run is slower). Host threads only read or change it between steps.
+class KernelProfile {
+ public:
+  struct Entry {
+    double seconds = 0;
+    long launches = 0;
+  };
+  static KernelProfile& instance() {
+    static KernelProfile p;
+    return p;
+  }
+  bool enabled() const { return enabled_; }
+  void enable(bool on) { enabled_ = on; }
+  void reset() { entries_.clear(); }
+  const std::map<std::string, Entry>& entries() const { return entries_; }
+  //! Runs `launch`, and when enabled adds its synchronised wall time to `label`.
+  template <class Launch>
+  void time(const char* label, Launch&& launch) {
+    if (!enabled_) {
+      launch();
+      return;
+    }
+    synchronize();
+    const auto t0 = std::chrono::steady_clock::now();
+    launch();
+    synchronize();
+    Entry& e = entries_[label];
+    e.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ++e.launches;
+  }
+
+ private:
+  bool enabled_ = false;
+  std::map<std::string, Entry> entries_;
+};
+
 //! Runs f(i) for i in [0, n). `label` names the kernel for profilers and error messages.
 template <class F>
 void for_each_index(const char* label, index_t n, F f) {
-  (void)label;
   if (n <= 0) return;
-  thrust::for_each_n(thrust::device, thrust::counting_iterator<index_t>(0), n, f);
+  KernelProfile::instance().time(label, [&] {
+    thrust::for_each_n(thrust::device, thrust::counting_iterator<index_t>(0), n, f);
+  });
 }
 
 namespace detail {
@@ -56,23 +105,28 @@ void for_each_cell(const char* label, int i0, int i1, int j0, int j1, F f) {
   for_each_index(label, static_cast<index_t>(ni) * nj, detail::Flatten2D<F>{i0, j0, ni, f});
 }
 
+//! op-reduction of f(k) over k in [0, n), starting from init (the two reductions below).
+template <class T, class F, class Op>
+T reduce_with(const char* label, index_t n, T init, F f, Op op) {
+  T out = init;
+  KernelProfile::instance().time(label, [&] {
+    out = thrust::transform_reduce(thrust::device, thrust::counting_iterator<index_t>(0),
+                                   thrust::counting_iterator<index_t>(n), detail::Transformed<F, T>{f}, init, op);
+  });
+  return out;
+}
+
 //! Maximum of f(k) over k in [0, n) (order-independent, hence deterministic); `init` for n == 0.
 template <class T, class F>
 T reduce_max(const char* label, index_t n, T init, F f) {
-  (void)label;
-  return thrust::transform_reduce(thrust::device, thrust::counting_iterator<index_t>(0),
-                                  thrust::counting_iterator<index_t>(n), detail::Transformed<F, T>{f}, init,
-                                  thrust::maximum<T>());
+  return reduce_with(label, n, init, f, thrust::maximum<T>());
 }
 
 //! Sum of f(k) over k in [0, n). The summation tree depends only on n and the thread count, so a run
 //! repeated on the same backend with the same thread count gives the same bits.
 template <class T, class F>
 T reduce_sum(const char* label, index_t n, T init, F f) {
-  (void)label;
-  return thrust::transform_reduce(thrust::device, thrust::counting_iterator<index_t>(0),
-                                  thrust::counting_iterator<index_t>(n), detail::Transformed<F, T>{f}, init,
-                                  thrust::plus<T>());
+  return reduce_with(label, n, init, f, thrust::plus<T>());
 }
 
 //! Atomic *p = max(*p, v) on device or host threads. The result does not depend on the order of the
@@ -84,13 +138,6 @@ BLAST_HD inline void atomic_max(int* p, int v) {
   int old = __atomic_load_n(p, __ATOMIC_RELAXED);
   while (old < v && !__atomic_compare_exchange_n(p, &old, v, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
   }
-#endif
-}
-
-//! Waits until every kernel launched so far has finished (for timings; the step loop never needs it).
-inline void synchronize() {
-#if defined(__CUDACC__)
-  cudaDeviceSynchronize();
 #endif
 }
 

@@ -62,6 +62,11 @@ class GasSolver {
   GasTotals totals(const CellRegion& region = {});
   //! Cumulative flow out through the outer boundary since initialise() (accumulated every step).
   const BoundaryOutflow& boundary_outflow() const { return outflow_; }
+  //! Cumulative energy [J/m] that immersed (prescribed) faces gave the gas: where setting such a face to the
+  //! solid's velocity leaves its dual cell a negative kinetic-energy balance, the deficit is not taken from
+  //! the gas's internal energy but counted here (conservative transport; docs/gas-solver.md). A coupled
+  //! budget counts it as work of the rock on the gas.
+  double immersed_face_work();
   //! Samples the gas at host points [m] (a device gather; cost independent of the grid size).
   std::vector<GasSample> sample(const std::vector<std::array<double, 2>>& points);
   HostGasFields to_host();
@@ -90,6 +95,7 @@ class GasSolver {
   // y-faces, cell internal energy per volume, kinetic energy dissipated per face.
   DeviceVector<double> mass_flux_x_, mass_flux_y_, energy_flux_x_, energy_flux_y_, internal_energy_density_;
   DeviceVector<double> dissipation_u_, dissipation_v_;
+  DeviceVector<double> solid_work_u_, solid_work_v_;  // cumulative, per face [J/m3]: immersed_face_work()
   double time_ = 0.0;
   long long steps_ = 0;
   BoundaryOutflow outflow_;

@@ -71,6 +71,9 @@ BLAST_HD inline EdgeContactLoad edge_against_target(const Vec2& p, const Vec2& q
                                                     const Vec2& vq, const Vec2 vt[3], double m_edge, double m_target,
                                                     double penalty, double friction, double dt) {
   EdgeContactLoad out{};
+  for (int k = 0; k < 3; ++k) {  // quick exit: the edge lies wholly outside one side of the target
+    if (cross3(t[k], t[(k + 1) % 3], p) < 0 && cross3(t[k], t[(k + 1) % 3], q) < 0) return out;
+  }
   const double len = sqrt((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y));
   const Vec2 n{(q.y - p.y) / len, -(q.x - p.x) / len};  // outward normal of the contactor's edge
   const Vec2 g{(t[0].x + t[1].x + t[2].x) / 3.0, (t[0].y + t[1].y + t[2].y) / 3.0};

@@ -10,17 +10,10 @@
 #include "blastsim/fdem/mesh.hpp"
 
 #include <array>
-#include <map>
 #include <string>
 #include <vector>
 
 namespace blastsim::fdem {
-
-//! A mesh with named boundary-edge groups (each edge a pair of vertex indices).
-struct NamedMesh {
-  TriangleMesh mesh;
-  std::map<std::string, std::vector<std::array<int, 2>>> boundary_groups;
-};
 
 //! A straight segment [m] from a to b.
 struct Segment {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,12 @@ namespace blastsim::fdem {
 struct TriangleMesh {
   std::vector<std::array<double, 2>> vertices;  //!< [m]
   std::vector<std::array<int, 3>> triangles;    //!< vertex indices, counter-clockwise
+};
+
+//! A mesh with named boundary-edge groups (each edge a pair of vertex indices).
+struct NamedMesh {
+  TriangleMesh mesh;
+  std::map<std::string, std::vector<std::array<int, 2>>> boundary_groups;
 };
 
 //! Checks a mesh; throws InputError naming the first problem: a vertex index out of range, an inverted
@@ -49,5 +56,11 @@ FdemTopology build_topology(const TriangleMesh& mesh);
 //! A structured mesh of nx x ny squares over [x0, x1] x [y0, y1], each square cut into two triangles
 //! along alternating diagonals (for tests and simple specimens).
 TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y0, double y1);
+
+//! A disc of radius r centred at (cx, cy) with a concentric hole of radius r_hole, paved in rings without
+//! Gmsh (for machines that lack it): round((r - r_hole) / h) rings of equal width, each circle divided into
+//! round(2 pi radius / h) equal arcs (every other circle turned by half an arc), neighbouring circles joined
+//! by a merge walk in angle, so triangles have sides near h. Groups outer, hole.
+NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, double h);
 
 }  // namespace blastsim::fdem

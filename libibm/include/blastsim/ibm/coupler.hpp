@@ -50,8 +50,10 @@ class GasRockCoupler {
   //! ambient pressure (a crack narrower than the grid holds no gas).
   void gas_to_rock();
 
-  //! One coupled step: rock_to_gas(), gas step, gas_to_rock(), rock step, with the same dt [s].
-  void step(double dt);
+  //! One coupled step of dt [s]: rock_to_gas(), gas step, gas_to_rock(), then `rock_substeps` rock steps of
+  //! dt / rock_substeps under those edge pressures (1: the paper's single dt; more: the rock subcycles a gas
+  //! step longer than its stable step, docs/coupling.md).
+  void step(double dt, int rock_substeps = 1);
 
   //! Largest dt [s] that both solvers accept: min(gas Courant limit at `courant`, rock stable step).
   double stable_dt(double courant);

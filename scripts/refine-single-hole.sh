@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Refinement study (validation S5) of the single-hole example: runs the default input at several gas-cell /
+# triangle sizes (same materials, gas states and end time) and tabulates broken joints, crack length, the
+# events of summary.txt and the energy budget. Usage: scripts/refine-single-hole.sh [OUTPUT_ROOT] [LEVELS...]
+# A level is NX:ELEMENT_SIZE (cells along each side of the 2.24 m grid, triangle size in m). The default levels
+# are 224:0.0375 280:0.03 350:0.024 420:0.02 (10, 8, 6.4 and 5.3 mm cells); the finest takes about 10 minutes.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+out="${1:-single_hole_refinement}"
+shift || true
+levels=("$@")
+[ ${#levels[@]} -gt 0 ] || levels=(224:0.0375 280:0.03 350:0.024 420:0.02)
+exe="$root/build-cpu/apps/blastsim/blastsim"
+[ -x "$exe" ] || { echo "build the driver first: cmake --preset cpu && cmake --build --preset cpu -j2" >&2; exit 1; }
+mkdir -p "$out"
+for level in "${levels[@]}"; do
+  nx="${level%%:*}" h="${level##*:}"
+  dir="$out/nx${nx}_h${h}"
+  start=$(date +%s)
+  "$exe" "$root/examples/single_hole/single_hole.toml" domain.nx="$nx" domain.ny="$nx" rock.mesh.element_size="$h" \
+    output.directory="$dir" output.vtk=false output.progress_interval=60 >"$dir.log" 2>&1
+  echo "$level $(( $(date +%s) - start )) s" >>"$out/wall_times.txt"
+done
+py=/usr/bin/python3
+[ -x "$py" ] || py=python3
+"$py" - "$out" <<'PY'
+import csv, pathlib, re, sys
+root = pathlib.Path(sys.argv[1])
+times = dict(l.split()[0:2] for l in (root / "wall_times.txt").read_text().splitlines())
+print("| cells (size) | triangles (size) | broken joints | crack length m | first crack ms | gas leaves ms | gas speed m/s | budget residual / initial | residual / gas work | wall s |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for d in sorted(root.glob("nx*_h*"), key=lambda p: int(re.match(r"nx(\d+)", p.name).group(1))):
+    if not d.is_dir(): continue
+    nx, h = re.match(r"nx(\d+)_h(.+)", d.name).groups()
+    rows = list(csv.DictReader(open(d / "coupling_series.csv")))
+    last = rows[-1]
+    summary = (d / "summary.txt").read_text()
+    def event(label):
+        m = re.search(label + r": [0-9.e+-]+ s \(([0-9.]+) ms\)", summary)
+        return m.group(1) if m else "-"
+    speed = re.search(r"nominal gas speed there: ([0-9.]+) m/s", summary)
+    log = (root / (d.name + ".log")).read_text()
+    tri = re.search(r"rock (\d+) triangles", log).group(1)
+    work = float(last["gas_work_on_rock_J_per_m"])
+    res = float(last["budget_residual_J_per_m"])
+    print(f"| {nx}^2 ({2.24 / int(nx) * 1e3:.1f} mm) | {tri} ({float(h) * 1e3:.1f} mm) | {last['broken_joints']} | "
+          f"{float(last['crack_length_m']):.2f} | {event('first crack')} | {event('gas leaves the rock.s outer surface')} | "
+          f"{speed.group(1) if speed else '-'} | {float(last['budget_relative']):+.2e} | {res / work:+.2%} | "
+          f"{times.get(nx + ':' + h, '?')} |")
+PY
