@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
         {"gas boundary", {"cip.ghosts", "cip.boundary_outflow"}, 0, 4.0 * n * 2 * 24 * 8},
         {"gas time step (signal rate)", {"cip.signal_rate"}, 0, cells * 4 * 8},
         {"rock triangles", {"fdem.triangles"}, 0, tri * (35 * 8 + 3)},
-        {"rock joints", {"fdem.joints", "fdem.vertex_bonds"}, 0, joints * (30 * 8 + 16 + 12 * 8)},
+        {"rock joints", {"fdem.joints"}, 0, joints * (30 * 8 + 16 + 12 * 8)},
         {"rock contact search", {"fdem.grid", "fdem.contact.count", "fdem.contact.fill"}, 0, 0},
         {"rock contact forces", {"fdem.contact"}, 0, tri * 12 * 8},
         {"rock integration", {"fdem.nodes", "fdem.vmax"}, 0, nodes * 33 * 8},

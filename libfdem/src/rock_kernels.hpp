@@ -31,8 +31,6 @@ struct RockArrays {
   std::uint8_t* joint_broken;
   const int *cell_key, *sorted_triangles, *cell_start, *cell_end;
   const int *neighbour_offset, *neighbour_list;  // contact candidates per triangle (CSR), from the last build
-  const int *node_vertex, *vertex_joint_offset, *vertex_joints;
-  std::uint8_t* vertex_bonded;
 };
 
 //! Bounding box of triangle t's current nodes.
@@ -212,39 +210,14 @@ struct JointForceKernel {
   }
 };
 
-//! Clears vertex_bonded[v] once a joint touching mesh vertex v has broken (a gather over v's joints; the
-//! flag never comes back, and it depends only on joint_broken, so a restart rebuilds it exactly).
-struct VertexBondKernel {
-  RockArrays r;
-  BLAST_HD void operator()(index_t vi) const {
-    const int v = static_cast<int>(vi);
-    if (!r.vertex_bonded[v]) return;
-    for (int k = r.vertex_joint_offset[v]; k < r.vertex_joint_offset[v + 1]; ++k)
-      if (r.joint_broken[r.vertex_joints[k]]) {
-        r.vertex_bonded[v] = 0;
-        return;
-      }
-  }
-};
-
 //! Contact forces on each triangle's own nodes (gather: every pair is evaluated by both its triangles,
 //! each keeping its own share, so no two threads write the same node). Candidates come from the broad
-//! phase's list; pairs apart (bounding boxes, then separating axes), joined by an intact joint, or sharing a
-//! mesh vertex whose joints are all intact are skipped. The last are the copies of one vertex held together
-//! by their joints: their corners overlap by the joints' elastic give (about stress / penalty x edge
-//! length) and that overlap is not a contact (docs/fdem-solver.md); once a crack reaches the vertex the
-//! pair is tested like any other.
+//! phase's list; pairs joined by an intact joint or apart (bounding boxes, then separating axes) are skipped.
+//! Pairs that only share a vertex are tested like any other (Munjiza): their corners overlap by the joints'
+//! give, and the small contact force that makes is part of the model (docs/fdem-solver.md).
 struct ContactForceKernel {
   RockArrays r;
   double penalty, friction, dt;
-  BLAST_HD bool share_bonded_vertex(int i, int j) const {
-    for (int a = 0; a < 3; ++a) {
-      const int v = r.node_vertex[3 * i + a];
-      for (int b = 0; b < 3; ++b)
-        if (r.node_vertex[3 * j + b] == v && r.vertex_bonded[v]) return true;
-    }
-    return false;
-  }
   BLAST_HD bool joined(int i, int j) const {
     for (int e = 0; e < 3; ++e)
       if (r.slot_neighbour[3 * i + e] == j) {
@@ -268,7 +241,7 @@ struct ContactForceKernel {
     double friction_power = 0;
     for (int s = r.neighbour_offset[i]; s < r.neighbour_offset[i + 1]; ++s) {
       const int j = r.neighbour_list[s];
-      if (boxes_apart(bi, triangle_box(r, j), 0.0) || joined(i, j) || share_bonded_vertex(i, j)) continue;
+      if (boxes_apart(bi, triangle_box(r, j), 0.0) || joined(i, j)) continue;
       Vec2 pj[3];
       triangle_nodes(r, j, pj);
       if (!triangles_overlap(pi, pj)) continue;

@@ -130,22 +130,6 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   joint_nodes_ = upload(joint_nodes), joint_strength_ = upload(strength);
   joint_damage_.assign(3 * joints_, 0.0), joint_state_.assign(6 * joints_, 0.0), joint_traction_.assign(6 * joints_, 0.0);
   joint_broken_.assign(joints_, 0);
-  // Joints per mesh vertex (CSR): each joint touches the two vertices of its edge.
-  const int vertices = topo.node_vertex.empty() ? 0 : *std::max_element(topo.node_vertex.begin(), topo.node_vertex.end()) + 1;
-  std::vector<int> vertex_offset(vertices + 1, 0), vertex_joints(2 * joints_);
-  for (int j = 0; j < joints_; ++j) {
-    ++vertex_offset[topo.node_vertex[topo.joints[j].a0] + 1];
-    ++vertex_offset[topo.node_vertex[topo.joints[j].a1] + 1];
-  }
-  for (int v = 0; v < vertices; ++v) vertex_offset[v + 1] += vertex_offset[v];
-  std::vector<int> fill(vertex_offset.begin(), vertex_offset.end() - 1);
-  for (int j = 0; j < joints_; ++j) {
-    vertex_joints[fill[topo.node_vertex[topo.joints[j].a0]]++] = j;
-    vertex_joints[fill[topo.node_vertex[topo.joints[j].a1]]++] = j;
-  }
-  node_vertex_ = upload(topo.node_vertex), vertex_joint_offset_ = upload(vertex_offset);
-  vertex_joints_ = upload(vertex_joints.empty() ? std::vector<int>{0} : vertex_joints);
-  vertex_bonded_.assign(std::max(vertices, 1), 1);
   sorted_triangles_.assign(triangles_, 0), cell_key_.assign(triangles_, 0);
   cell_start_.assign(1, 0), cell_end_.assign(1, 0);
   neighbour_offset_.assign(triangles_ + 1, 0), neighbour_list_.assign(1, 0);
@@ -162,9 +146,7 @@ detail::RockArrays RockSolver::arrays() {
           device_ptr(edge_pressure_), device_ptr(joint_nodes_), device_ptr(joint_strength_),
           device_ptr(joint_damage_), device_ptr(joint_state_), device_ptr(joint_traction_),
           device_ptr(joint_broken_), device_ptr(cell_key_), device_ptr(sorted_triangles_), device_ptr(cell_start_),
-          device_ptr(cell_end_), device_ptr(neighbour_offset_), device_ptr(neighbour_list_),
-          device_ptr(node_vertex_), device_ptr(vertex_joint_offset_), device_ptr(vertex_joints_),
-          device_ptr(vertex_bonded_)};
+          device_ptr(cell_end_), device_ptr(neighbour_offset_), device_ptr(neighbour_list_)};
 }
 
 void RockSolver::rebuild_contact_grid() {
@@ -243,7 +225,6 @@ void RockSolver::step(double dt) {
   if (options_.contact && 2 * travel_since_build_ > buffer_) rebuild_contact_grid();
   triangle_forces(dt);
   joint_forces();
-  vertex_bonds();
   contact_forces(dt);
   update_nodes(dt);
   const detail::RockArrays r = arrays();
@@ -276,13 +257,6 @@ void RockSolver::triangle_forces(double dt) {
 // Munjiza 2004 ch. 7: cohesive joints.
 void RockSolver::joint_forces() {
   if (joints_ > 0) for_each_index("fdem.joints", joints_, detail::JointForceKernel{arrays()});
-}
-
-// Which mesh vertices still have all their joints intact (contact skips pairs that share one).
-void RockSolver::vertex_bonds() {
-  if (options_.contact && !vertex_bonded_.empty() && vertex_joint_offset_.size() > 1)
-    for_each_index("fdem.vertex_bonds", static_cast<index_t>(vertex_joint_offset_.size() - 1),
-                   detail::VertexBondKernel{arrays()});
 }
 
 // Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction.

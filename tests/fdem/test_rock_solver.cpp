@@ -332,12 +332,13 @@ TEST_CASE("A fixed time step above the stable step is refused with a clear messa
   CHECK_THROWS_WITH(s.step(2 * s.stable_dt()), Catch::Contains("stable step"));
 }
 
-TEST_CASE("Contact: intact rock gets no contact force; the faces of a cut do", "[fdem][contact]") {
+TEST_CASE("Contact: intact rock gets almost no contact force; the faces of a cut do", "[fdem][contact]") {
   // A block of the paper's rock (16 x 8 squares of 10 mm) pushed at 0.5 m/s on its left side against a fixed
-  // right side: a compression wave of about 7 MPa. The copies of every mesh vertex are held together by its
-  // joints and their triangles' corners overlap by the joints' give; with all joints intact that is no
-  // contact, so the run with contact on must equal the run without it byte for byte. With the joints along
-  // x = 80 mm broken first, the wave presses the two faces of that cut together: contact must act there.
+  // right side: a compression wave of about 7 MPa. Triangles that meet only at a vertex are contact pairs
+  // (Munjiza); their corners overlap by the joints' give (stress / penalty x edge, about a micron here), so
+  // contact acts in intact rock, but weakly: its work stays below 1e-3 of the strain energy and the strain
+  // energy within 1e-3 of the run without contact. With the joints along x = 80 mm broken first, the wave
+  // presses the two faces of that cut together: contact must hold them apart.
   auto run = [](bool contact, bool cut, RockEnergies& e) {
     const FdemTopology topo = build_topology(structured_rectangle(16, 8, 0.0, 0.16, 0.0, 0.08));
     RockOptions opt;
@@ -353,14 +354,13 @@ TEST_CASE("Contact: intact rock gets no contact force; the faces of a cut do", "
     return s.snapshot();
   };
   RockEnergies on, off, cut_on, cut_off;
-  const RockSnapshot a = run(true, false, on), b = run(false, false, off);
+  run(true, false, on);
+  run(false, false, off);
   std::printf("Contact, intact block: contact work %.3e J/m, strain %.6e vs %.6e J/m (contact off); %d joints broken\n",
               on.contact_work, on.strain, off.strain, on.broken_joints);
   CHECK(on.broken_joints == 0);
-  CHECK(on.contact_work == 0.0);
-  CHECK(std::memcmp(a.x.data(), b.x.data(), a.x.size() * sizeof(double)) == 0);
-  CHECK(std::memcmp(a.vx.data(), b.vx.data(), a.vx.size() * sizeof(double)) == 0);
-  CHECK(std::memcmp(a.stress.data(), b.stress.data(), a.stress.size() * sizeof(double)) == 0);
+  CHECK(std::fabs(on.contact_work) < 1e-3 * on.strain);
+  CHECK_THAT(on.strain, Catch::Matchers::WithinRel(off.strain, 1e-3));
   const RockSnapshot c = run(true, true, cut_on), d = run(false, true, cut_off);
   // Largest overlap of the cut's faces: left-face nodes (x0 = 80 mm, in a triangle left of the cut) that
   // moved past the right face's nodes at the same height.

@@ -55,7 +55,6 @@ class RockSolver {
   // --- the phases of step(), public for benchmarks and profiling (call them in this order) ---
   void triangle_forces(double dt);  //!< internal forces, stresses, damping, edge pressures (one thread per triangle)
   void joint_forces();              //!< cohesive joints, damage, breakage (one thread per joint)
-  void vertex_bonds();
   void contact_forces(double dt);   //!< contact and friction (one thread per triangle); no-op without contact
   void update_nodes(double dt);     //!< gather and integrate (one thread per node)
 
@@ -144,10 +143,6 @@ class RockSolver {
   DeviceVector<double> joint_state_;     // 6 per joint: opening and slip at the three points [m]
   DeviceVector<double> joint_traction_;  // 6 per joint: sigma and tau at the three points [Pa]
   DeviceVector<std::uint8_t> joint_broken_;
-  // mesh vertices: triangles that share a vertex whose joints are all intact do not contact (vertex_bonds())
-  DeviceVector<int> node_vertex_;                          // mesh vertex of each node
-  DeviceVector<int> vertex_joint_offset_, vertex_joints_;  // joints that touch each vertex (CSR)
-  DeviceVector<std::uint8_t> vertex_bonded_;               // 1 while every joint at the vertex is intact
   // contact broad phase: uniform grid, triangles sorted by cell
   DeviceVector<int> cell_key_, sorted_triangles_, cell_start_, cell_end_;
   DeviceVector<int> neighbour_offset_, neighbour_list_;  // candidates within the buffer, per triangle (CSR)
