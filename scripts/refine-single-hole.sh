@@ -3,7 +3,8 @@
 # triangle sizes (same materials, gas states and end time) and tabulates broken joints, crack length, the
 # events of summary.txt and the energy budget. Usage: scripts/refine-single-hole.sh [OUTPUT_ROOT] [LEVELS...]
 # A level is NX:ELEMENT_SIZE (cells along each side of the 2.24 m grid, triangle size in m). The default levels
-# are 224:0.0375 280:0.03 350:0.024 420:0.02 (10, 8, 6.4 and 5.3 mm cells); the finest takes about 10 minutes.
+# are 224:0.0375 280:0.03 350:0.024 420:0.02 (10, 8, 6.4 and 5.3 mm cells); the two finest take about 6 and
+# 15 minutes on 2 cores.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 out="${1:-single_hole_refinement}"
