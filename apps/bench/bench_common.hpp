@@ -17,11 +17,19 @@
 
 namespace blastsim::bench {
 
+//! "a,b,c" -> {"a", "b", "c"} (empty items dropped).
+inline std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string s; std::getline(ss, s, ',');)
+    if (!s.empty()) out.push_back(s);
+  return out;
+}
+
 //! "64,128,256" -> {64, 128, 256}.
 inline std::vector<int> parse_int_list(const std::string& text) {
   std::vector<int> out;
-  std::stringstream ss(text);
-  for (std::string s; std::getline(ss, s, ',');) out.push_back(std::stoi(s));
+  for (const std::string& s : split_list(text)) out.push_back(std::stoi(s));
   return out;
 }
 

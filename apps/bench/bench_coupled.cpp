@@ -40,19 +40,7 @@ int main(int argc, char** argv) {
     const std::string arg = argv[a];
     if (arg.rfind("--cases=", 0) == 0) {  // N:H,N:H,...
       cases.clear();
-      for (const std::string& item : [&] {
-             std::vector<std::string> v;
-             std::string s = arg.substr(8), cur;
-             for (char c : s + ",") {
-               if (c == ',') {
-                 if (!cur.empty()) v.push_back(cur);
-                 cur.clear();
-               } else {
-                 cur += c;
-               }
-             }
-             return v;
-           }()) {
+      for (const std::string& item : bench::split_list(arg.substr(8))) {
         const size_t colon = item.find(':');
         cases.push_back({std::stoi(item.substr(0, colon)), std::stod(item.substr(colon + 1))});
       }

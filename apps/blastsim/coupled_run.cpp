@@ -251,12 +251,6 @@ void check_same_case(const std::string& saved, const std::string& now, const std
                                path, line_at(saved), line_at(now)));
 }
 
-//! Rock steps that fill a gas step of dt [s] without exceeding the rock's step rock_dt [s]. The small relative
-//! allowance keeps a dt equal to rock_dt (up to rounding) at one substep.
-int rock_substeps(double dt, double rock_dt) {
-  return std::max(1, static_cast<int>(std::ceil(dt / rock_dt * (1 - 1e-12))));
-}
-
 }  // namespace
 
 void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOptions& options) {
@@ -335,7 +329,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
       const double next = gas_out.next_event(gas.time());
       if (gas.time() + dt > next) dt = next - gas.time();
     }
-    substeps = c.rock_subcycling ? rock_substeps(dt, rock_dt) : 1;
+    substeps = c.rock_subcycling ? ibm::rock_substeps(dt, rock_dt) : 1;
     coupler.step(dt, substeps);  // rock -> gas, gas, gas -> rock, rock (throws InstabilityError on a non-finite rock)
     rate = checked_signal_rate(gas, gc.output_directory);
     const bool last = gas.time() >= gc.end_time * (1 - 1e-12);

@@ -17,7 +17,7 @@ fdem::NamedMesh make_mesh(const RockMeshSpec& s) {
   const double h = s.element_size;
   if (s.shape == "rectangle") return fdem::gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h);
   if (s.shape == "disc") return fdem::gmsh_disc(s.center[0], s.center[1], s.radius, h);
-  if (s.shape == "disc_with_hole" && s.mesher == "rings")
+  if (s.mesher == "rings")  // read_mesh allows it for disc_with_hole only
     return fdem::ring_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
   if (s.shape == "disc_with_hole") return fdem::gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
   if (s.shape == "rectangle_with_hole")

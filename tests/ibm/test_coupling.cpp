@@ -275,7 +275,7 @@ struct HoleInRock {
     while (gas.time() < t - 1e-12) {
       const double dt = std::fmin(subcycle ? gas.courant_dt(0.1) : coupler.stable_dt(0.1), t - gas.time());
       if (!(dt > 0)) FAIL("no stable step at t = " << gas.time() << ": " << gas.describe_invalid_cell());
-      const int substeps = subcycle ? static_cast<int>(std::ceil(dt / (0.9 * rock.stable_dt()))) : 1;
+      const int substeps = subcycle ? ibm::rock_substeps(dt, 0.9 * rock.stable_dt()) : 1;
       coupler.step(dt, substeps);
     }
   }

@@ -10,7 +10,9 @@
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace blastsim::ibm {
 
@@ -30,6 +32,12 @@ struct CouplingDiagnostics {
   double gas_work_on_rock = 0;                //!< [J/m] cumulative work of the edge pressures on the rock
   CellTransitions transitions;
 };
+
+//! Rock steps that fill a gas step of dt [s] without exceeding the rock step rock_dt [s] (rock subcycling;
+//! a small relative allowance keeps a dt equal to rock_dt up to rounding at one substep).
+inline int rock_substeps(double dt, double rock_dt) {
+  return std::max(1, static_cast<int>(std::ceil(dt / rock_dt * (1 - 1e-12))));
+}
 
 class GasRockCoupler {
  public:
