@@ -271,7 +271,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
                      rock.joint_count(), rock.stable_dt());
 
   GasOutputs gas_out(gc, gas, log, false, resume);
-  RockOutputs rock_out(c.rock, rock, resume);
+  RockOutputs rock_out(c.rock, model, resume);
   CouplingSeries series(c, gas, rock, coupler, resume);
   BlastholeMonitor blasthole(c, gas, rock, resume);
   bool warned = false;

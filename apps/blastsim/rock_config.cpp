@@ -4,7 +4,9 @@
 #include "case_input.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace blastsim::app {
@@ -60,6 +62,29 @@ RockMeshSpec read_mesh(TableReader& t) {
   if (s.shape == "disc_with_hole" || s.shape == "rectangle_with_hole") {
     if (s.shape == "rectangle_with_hole") s.center = t.pair("center", "m");
     s.hole_radius = t.number("hole_radius", "m", Range::positive());
+  }
+  for (TableReader& l : t.table_array("joint_line")) {
+    const fdem::Segment g{l.pair("from", "m"), l.pair("to", "m")};
+    l.finish();
+    if (s.shape == "rectangle_with_hole" || s.mesher != "gmsh")
+      throw InputError(fmt::format("{}: joint lines are made by Gmsh for shape = \"rectangle\", \"disc\" or "
+                                   "\"disc_with_hole\" (this mesh: shape \"{}\", mesher \"{}\")",
+                                   l.path(), s.shape, s.mesher));
+    if (std::hypot(g.b[0] - g.a[0], g.b[1] - g.a[1]) < 0.5 * s.element_size)
+      throw InputError(fmt::format("{}: from ({}) m to ({}) m is shorter than half an element ({} m)", l.path(),
+                                   fmt::join(g.a, ", "), fmt::join(g.b, ", "), 0.5 * s.element_size));
+    for (const auto& p : {g.a, g.b}) {
+      const double tol = 1e-9 * std::max({s.max[0] - s.min[0], s.max[1] - s.min[1], s.radius});
+      const double r = std::hypot(p[0] - s.center[0], p[1] - s.center[1]);
+      const bool inside = s.shape == "rectangle"
+                              ? p[0] >= s.min[0] - tol && p[0] <= s.max[0] + tol && p[1] >= s.min[1] - tol &&
+                                    p[1] <= s.max[1] + tol
+                              : r <= s.radius + tol && (s.shape == "disc" || r >= s.hole_radius - tol);
+      if (!inside)
+        throw InputError(fmt::format("{}: the end ({}) m lies outside the rock; both ends must lie in the {} or on its "
+                                     "boundary", l.path(), fmt::join(p, ", "), s.shape));
+    }
+    s.joint_lines.push_back(g);
   }
   return s;
 }

@@ -2,6 +2,7 @@
 //! \brief The driver's rock-only case (mesh, material, loads, time, output); plain data (case_input.hpp reads it).
 #pragma once
 
+#include "blastsim/fdem/gmsh_mesh.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/rock_types.hpp"
 
@@ -21,6 +22,7 @@ struct RockMeshSpec {
   std::array<double, 2> min{}, max{};  //!< [m] rectangles
   std::string file;                  //!< .msh path (shape = file)
   std::string mesher = "gmsh";       //!< gmsh | rings (disc_with_hole without Gmsh: fdem::ring_disc_with_hole)
+  std::vector<fdem::Segment> joint_lines;  //!< [m] segments the Gmsh mesh follows: a row of joints along each
 };
 
 //! Prescribed velocity of every node whose initial position lies in the box [min, max].

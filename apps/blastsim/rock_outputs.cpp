@@ -15,11 +15,12 @@ namespace {
 
 fdem::NamedMesh make_mesh(const RockMeshSpec& s) {
   const double h = s.element_size;
-  if (s.shape == "rectangle") return fdem::gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h);
-  if (s.shape == "disc") return fdem::gmsh_disc(s.center[0], s.center[1], s.radius, h);
+  if (s.shape == "rectangle") return fdem::gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h, s.joint_lines);
+  if (s.shape == "disc") return fdem::gmsh_disc(s.center[0], s.center[1], s.radius, h, s.joint_lines);
   if (s.mesher == "rings")  // read_mesh allows it for disc_with_hole only
     return fdem::ring_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
-  if (s.shape == "disc_with_hole") return fdem::gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
+  if (s.shape == "disc_with_hole")
+    return fdem::gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.joint_lines);
   if (s.shape == "rectangle_with_hole")
     return fdem::gmsh_rectangle_with_hole(s.min[0], s.min[1], s.max[0], s.max[1], s.center[0], s.center[1],
                                           s.hole_radius, h);
@@ -59,6 +60,7 @@ RockModel make_rock_model(const RockCaseConfig& c) {
       throw InputError(fmt::format("rock.velocity.{}: no mesh node lies in the box [{}, {}] x [{}, {}] m", k, l.min[0],
                                    l.max[0], l.min[1], l.max[1]));
     solver.prescribe_velocity(nodes, l.along_x, l.along_y, l.velocity[0], l.velocity[1]);
+    m.velocity_nodes.push_back(nodes);
   }
   for (size_t k = 0; k < c.pressures.size(); ++k) {
     const PressureLoad& l = c.pressures[k];
@@ -86,13 +88,19 @@ double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver) {
   return dt;
 }
 
-RockOutputs::RockOutputs(const RockCaseConfig& c, fdem::RockSolver& solver, bool resume)
-    : c_(c), solver_(solver), dir_(make_output_dir(c.output_directory)), rock_pvd_((dir_ / "rock.pvd").string()),
-      joints_pvd_((dir_ / "joints.pvd").string()),
+RockOutputs::RockOutputs(const RockCaseConfig& c, const RockModel& model, bool resume)
+    : c_(c), solver_(*model.solver), velocity_nodes_(model.velocity_nodes), dir_(make_output_dir(c.output_directory)),
+      rock_pvd_((dir_ / "rock.pvd").string()), joints_pvd_((dir_ / "joints.pvd").string()),
       series_((dir_ / "rock_series.csv").string(),
-              "step,time_s,kinetic_J_per_m,strain_J_per_m,joint_work_J_per_m,fracture_dissipated_J_per_m,"
-              "contact_work_J_per_m,friction_dissipated_J_per_m,damping_dissipated_J_per_m,external_work_J_per_m,"
-              "energy_balance_J_per_m,broken_joints,crack_length_m",
+              [&] {
+                std::string h = "step,time_s,kinetic_J_per_m,strain_J_per_m,joint_work_J_per_m,"
+                                "fracture_dissipated_J_per_m,contact_work_J_per_m,friction_dissipated_J_per_m,"
+                                "damping_dissipated_J_per_m,external_work_J_per_m,energy_balance_J_per_m,"
+                                "broken_joints,crack_length_m";
+                for (size_t k = 0; k < model.velocity_nodes.size(); ++k)
+                  h += fmt::format(",velocity{0}_reaction_x_N_per_m,velocity{0}_reaction_y_N_per_m", k);
+                return h;
+              }(),
               resume),
       e0_(solver_.energies()) {}
 
@@ -127,10 +135,16 @@ fdem::RockEnergies RockOutputs::monitor() {
   const fdem::RockEnergies e = solver_.energies();
   const double balance = e.kinetic + e.strain + e.joint_work + e.contact_work + e.damping_dissipated -
                          (e0_.kinetic + e0_.strain + e.external_work);
+  std::string reactions;  // of the supports on the loaded nodes: the platen force, with the sign of the axes
+  for (const std::vector<int>& nodes : velocity_nodes_) {
+    const std::array<double, 2> f = solver_.support_reaction(nodes);
+    reactions += fmt::format(",{:.9e},{:.9e}", f[0], f[1]);
+  }
   series_.row(fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e}",
                          solver_.steps(), solver_.time(), e.kinetic, e.strain, e.joint_work, e.fracture_dissipated,
                          e.contact_work, e.friction_dissipated, e.damping_dissipated, e.external_work, balance,
-                         e.broken_joints, e.crack_length));
+                         e.broken_joints, e.crack_length) +
+              reactions);
   return e;
 }
 

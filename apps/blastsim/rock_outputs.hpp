@@ -22,17 +22,20 @@ struct RockModel {
   fdem::NamedMesh mesh;
   fdem::FdemTopology topology;
   std::unique_ptr<fdem::RockSolver> solver;
+  std::vector<std::vector<int>> velocity_nodes;  //!< the nodes of each [[rock.velocity]] load
 };
 RockModel make_rock_model(const RockCaseConfig& c);
 
 //! dt [s] of the rock: the fixed time.dt (refused above the stable step, naming it) or step_fraction x stable.
 double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver);
 
-//! rock.pvd / rock_NNNNNN.vtu, joints.pvd / joints_NNNNNN.vtu and rock_series.csv in the output folder.
+//! rock.pvd / rock_NNNNNN.vtu, joints.pvd / joints_NNNNNN.vtu and rock_series.csv in the output folder
+//! (energies, cracks, and the support reaction of each [[rock.velocity]] load: the force a testing machine's
+//! platen measures).
 class RockOutputs {
  public:
   //! `resume`: a restart, whose read_checkpoint() follows (files are kept, not started anew).
-  RockOutputs(const RockCaseConfig& c, fdem::RockSolver& solver, bool resume = false);
+  RockOutputs(const RockCaseConfig& c, const RockModel& model, bool resume = false);
   void snapshot();             //!< one .vtu pair (when output.vtk)
   fdem::RockEnergies monitor();  //!< one row of rock_series.csv; returns the energies
   void write_checkpoint(CheckpointWriter& w);  //!< snapshot count, initial energies, series sizes
@@ -40,6 +43,7 @@ class RockOutputs {
  private:
   const RockCaseConfig& c_;
   fdem::RockSolver& solver_;
+  const std::vector<std::vector<int>>& velocity_nodes_;
   std::filesystem::path dir_;
   PvdSeries rock_pvd_, joints_pvd_;
   CsvSeries series_;

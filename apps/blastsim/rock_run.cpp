@@ -26,7 +26,7 @@ void run_rock_case(const RockCaseConfig& c, std::ostream& log, const RunOptions&
                      solver.triangle_count(), solver.joint_count(), model.topology.boundary_edges.size(), solver.stable_dt(), dt,
                      static_cast<long long>(std::ceil(c.end_time / dt)));
 
-  RockOutputs out(c, solver);
+  RockOutputs out(c, model);
   out.snapshot();
   out.monitor();
   double next_snapshot = c.output_interval > 0 ? c.output_interval : c.end_time;

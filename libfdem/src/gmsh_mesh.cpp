@@ -191,11 +191,11 @@ NamedMesh guarded(const std::string& what, Build build) {
 
 }  // namespace
 
-NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h) {
+NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h, const std::vector<Segment>& embedded) {
   require_size(h, "rectangle mesh");
   if (!(x1 > x0) || !(y1 > y0)) throw InputError("rectangle mesh: need x1 > x0 and y1 > y0");
   return guarded("rectangle mesh", [&] {
-    gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0);
+    embed_segments({{2, gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0)}}, embedded);
     return mesh_shape(h, [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
                       "rectangle mesh");
   });
@@ -264,7 +264,7 @@ namespace {
 }
 }  // namespace
 
-NamedMesh gmsh_rectangle(double, double, double, double, double) { no_gmsh("rectangle mesh"); }
+NamedMesh gmsh_rectangle(double, double, double, double, double, const std::vector<Segment>&) { no_gmsh("rectangle mesh"); }
 NamedMesh gmsh_disc(double, double, double, double, const std::vector<Segment>&) { no_gmsh("disc mesh"); }
 NamedMesh gmsh_disc_with_hole(double, double, double, double, double, const std::vector<Segment>&) { no_gmsh("disc-with-hole mesh"); }
 NamedMesh gmsh_rectangle_with_hole(double, double, double, double, double, double, double, double) {

@@ -1,11 +1,14 @@
 //! \file test_rock_driver.cpp
-//! \brief Driver on rock-only cases: the bundled Brazilian disc runs and writes .vtu that VTK reads back; bad rock input.
+//! \brief Driver on rock-only cases: the bundled Brazilian disc runs and writes .vtu that VTK reads back; the bundled
+//! uniaxial compression reaches the Mohr-Coulomb strength (F8 through the driver); bad rock input.
 #include "blastsim/core/error.hpp"
 #include "case_input.hpp"
 #include "catch.hpp"
 #include "temp_files.hpp"
 #include "rock_run.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -26,9 +29,54 @@ using blastsim::testing::first_line;
 
 namespace {
 const std::string example = std::string(BLASTSIM_EXAMPLES_DIR) + "/brazilian_disc/brazilian_disc.toml";
+const std::string uniaxial = std::string(BLASTSIM_EXAMPLES_DIR) + "/uniaxial_compression/uniaxial_compression.toml";
 
-
+//! Column `name` of a CSV file with a header row.
+std::vector<double> csv_column(const fs::path& file, const std::string& name) {
+  std::ifstream in(file);
+  std::string line, cell;
+  std::getline(in, line);
+  std::istringstream header(line);
+  int column = -1;
+  for (int k = 0; std::getline(header, cell, ','); ++k)
+    if (cell == name) column = k;
+  REQUIRE(column >= 0);
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    for (int k = 0; std::getline(row, cell, ','); ++k)
+      if (k == column) values.push_back(std::stod(cell));
+  }
+  return values;
+}
 }  // namespace
+
+TEST_CASE("Driver runs the bundled uniaxial compression: the platen force peaks at the Mohr-Coulomb strength",
+          "[app][rock][F8]") {
+  const fs::path out = fresh_dir("uniaxial");
+  const app::RockCaseConfig c = app::read_rock_case(
+      app::load_input(uniaxial, {"output.vtk=false", "output.directory=\"" + out.string() + "\""}));
+  REQUIRE(c.mesh.joint_lines.size() == 1);
+  std::ostringstream log;
+  app::run_rock_case(c, log);
+  INFO(log.str());
+  // The bottom platen's reaction over the width is the axial stress; the analytic strength of a plane at
+  // 45 - phi/2 is 2 c cos(phi) / (1 - sin(phi)); validation.md F8 bound 20 %.
+  const std::vector<double> bottom = csv_column(out / "rock_series.csv", "velocity1_reaction_y_N_per_m");
+  const std::vector<double> top = csv_column(out / "rock_series.csv", "velocity0_reaction_y_N_per_m");
+  REQUIRE(bottom.size() > 100);
+  const double width = c.mesh.max[0] - c.mesh.min[0];
+  const double peak = *std::max_element(bottom.begin(), bottom.end()) / width;
+  const double phi = c.material.friction_angle;
+  const double expected = 2 * c.material.cohesion * std::cos(phi) / (1 - std::sin(phi));
+  std::printf("Uniaxial example: peak platen stress %.2f MPa vs %.2f MPa (%+.1f %%)\n", peak / 1e6, expected / 1e6,
+              100 * (peak / expected - 1));
+  CHECK(std::fabs(peak / expected - 1) < 0.20);
+  const size_t at = std::max_element(bottom.begin(), bottom.end()) - bottom.begin();
+  CHECK(top[at] < 0);  // the top platen pushes down, the bottom one up
+  CHECK(std::fabs(top[at] + bottom[at]) < 0.05 * bottom[at]);  // quasi-static: nearly balanced at the peak
+  CHECK(bottom.back() < 0.2 * bottom[at]);  // and the specimen has failed by the end
+}
 
 #if defined(BLASTSIM_HAVE_VTK)
 TEST_CASE("Driver runs the bundled Brazilian disc (coarse) and its .vtu read back", "[app][rock][vtk]") {
@@ -77,6 +125,18 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   CHECK_THROWS_WITH(read({"rock.mesh.elements=3"}), Catch::Contains("rock.mesh.elements"));
   CHECK_THROWS_WITH(read({"rock.damping_ratio=1.5"}), Catch::Contains("rock.damping_ratio"));
   CHECK_THROWS_WITH(read({"rock.velocity.0.components=\"z\""}), Catch::Contains("rock.velocity.0.components"));
+  // Joint lines: ends inside the rock, longer than half an element, on a Gmsh shape that takes them.
+  auto read_uniaxial = [](const std::vector<std::string>& overrides) {
+    return app::read_rock_case(app::load_input(uniaxial, overrides));
+  };
+  CHECK_THROWS_WITH(read_uniaxial({"rock.mesh.joint_line.0.to=[0.06, 0.09]"}),
+                    Catch::Contains("rock.mesh.joint_line.0") && Catch::Contains("outside the rock"));
+  CHECK_THROWS_WITH(read_uniaxial({"rock.mesh.joint_line.0.to=[0.001, 0.007]"}),
+                    Catch::Contains("rock.mesh.joint_line.0") && Catch::Contains("shorter than half an element"));
+  CHECK_THROWS_WITH(read_uniaxial({"rock.mesh.joint_line.0.along=1.0"}), Catch::Contains("rock.mesh.joint_line.0.along"));
+  CHECK_THROWS_WITH(read_uniaxial({"rock.mesh.shape=\"rectangle_with_hole\"", "rock.mesh.center=[0.025, 0.05]",
+                                   "rock.mesh.hole_radius=0.005"}),
+                    Catch::Contains("joint lines are made by Gmsh"));
   // A case with both gas and rock is a coupled case.
   toml::table both = app::load_input(example, {});
   CHECK(app::case_kind(both) == app::CaseKind::rock);

@@ -23,8 +23,10 @@ struct Segment {
 //! True when this build can call Gmsh.
 bool gmsh_available();
 
-//! Rectangle [x0, x1] x [y0, y1], target element size h [m]; groups left, right, bottom, top.
-NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h);
+//! Rectangle [x0, x1] x [y0, y1], target element size h [m]; groups left, right, bottom, top. `embedded`:
+//! segments the mesh must follow (e.g. a plane at the Mohr-Coulomb angle across a compression specimen).
+NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h,
+                         const std::vector<Segment>& embedded = {});
 //! Disc of radius r centred at (cx, cy); group outer. `embedded`: segments (chords, with their ends on the
 //! circle) that the mesh must follow, so that a row of joints lies exactly along each.
 NamedMesh gmsh_disc(double cx, double cy, double r, double h, const std::vector<Segment>& embedded = {});
