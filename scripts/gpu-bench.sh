@@ -57,7 +57,7 @@ if [ -x build-cuda/apps/bench/blastsim-bench-fdem ]; then
 fi
 if [ -x build-cuda/apps/bench/blastsim-bench-coupled ]; then
   # The coupled single-hole step phase by phase (ring mesh: no Gmsh needed): quarter size and paper size.
-  build-cuda/apps/bench/blastsim-bench-coupled --cases="${GPU_COUPLED_CASES:-2501:0.019,5001:0.0095}" --steps=20 \
+  build-cuda/apps/bench/blastsim-bench-coupled --cases="${GPU_COUPLED_CASES:-2501:0.019,5001:0.0095}" --steps=20 --kernels \
     > "$out/bench_coupled.log" 2>&1
   note "bench_coupled rc=$?"
   cat "$out/bench_coupled.log" >> "$summary"

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   using namespace blastsim;
   std::vector<std::pair<int, double>> cases{{280, 0.03}, {560, 0.015}};
   int steps = 20, warmup = 40;
+  bool per_kernel = false;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--cases=", 0) == 0) {  // N:H,N:H,...
@@ -48,9 +49,12 @@ int main(int argc, char** argv) {
       steps = std::stoi(arg.substr(8));
     } else if (arg.rfind("--warmup=", 0) == 0) {
       warmup = std::stoi(arg.substr(9));
+    } else if (arg == "--kernels") {
+      per_kernel = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--cases=N:H,...] [--steps=N] [--warmup=N]\n"
-                           "  N: gas cells per side of the 2.24 m grid; H: triangle size [m] (paper: 5001:0.0095)\n",
+      std::fprintf(stderr, "usage: %s [--cases=N:H,...] [--steps=N] [--warmup=N] [--kernels]\n"
+                           "  N: gas cells per side of the 2.24 m grid; H: triangle size [m] (paper: 5001:0.0095)\n"
+                           "  --kernels: also every kernel's time and launches per step\n",
                    argv[0]);
       return 2;
     }
@@ -126,6 +130,13 @@ int main(int argc, char** argv) {
                   p.floor_bytes / 1e6, p.floor_bytes > 0 && t > 0 ? 100 * p.floor_bytes / t / bw : 0.0);
     }
     std::printf("  %-28s %10.4f %6.1f%%\n", "other kernels", 1e3 * other / steps, 100 * other / total);
+    long launches = 0;
+    for (const auto& [label, e] : prof.entries()) launches += e.launches;
+    std::printf("  launches through the profiled launchers: %.1f per step\n", double(launches) / steps);
+    if (per_kernel)
+      for (const auto& [label, e] : prof.entries())
+        std::printf("    %-34s %10.4f ms/step %6.2f launches/step\n", label.c_str(), 1e3 * e.seconds / steps,
+                    double(e.launches) / steps);
   }
   return 0;
 }

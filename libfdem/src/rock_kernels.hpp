@@ -41,7 +41,9 @@ BLAST_HD inline Box triangle_box(const RockArrays& r, int t) {
   Box b{1e300, 1e300, -1e300, -1e300};
   for (int k = 0; k < 3; ++k) {
     const double x = r.x[3 * t + k], y = r.y[3 * t + k];
-    b.lo_x = fmin(b.lo_x, x), b.lo_y = fmin(b.lo_y, y), b.hi_x = fmax(b.hi_x, x), b.hi_y = fmax(b.hi_y, y);
+    // Plain comparisons, not fmin/fmax (a libm call on the CPU; positions are finite: step() checks speeds).
+    b.lo_x = x < b.lo_x ? x : b.lo_x, b.lo_y = y < b.lo_y ? y : b.lo_y;
+    b.hi_x = x > b.hi_x ? x : b.hi_x, b.hi_y = y > b.hi_y ? y : b.hi_y;
   }
   return b;
 }
@@ -210,13 +212,65 @@ struct JointForceKernel {
   }
 };
 
-//! Contact forces on each triangle's own nodes (gather: every pair is evaluated by both its triangles,
-//! each keeping its own share, so no two threads write the same node). Candidates come from the broad
-//! phase's list; pairs joined by an intact joint or apart (bounding boxes, then separating axes) are skipped.
-//! Pairs that only share a vertex are tested like any other (Munjiza): their corners overlap by the joints'
-//! give, and the small contact force that makes is part of the model (docs/fdem-solver.md).
-struct ContactForceKernel {
+//! Contact pairs from the broad phase's candidate lists, which are symmetric (j is in i's list exactly when i
+//! is in j's: same cells, same box test). Each unordered pair {i, j} is numbered once, as (i, j) with i < j,
+//! triangle by triangle: pair_offset[i] + the rank of j among i's candidates above i. First pass: how many
+//! pairs each triangle leads.
+struct PairCountKernel {
+  const int *offset, *list;
+  int* count;
+  BLAST_HD void operator()(index_t ti) const {
+    const int i = static_cast<int>(ti);
+    int c = 0;
+    for (int s = offset[i]; s < offset[i + 1]; ++s) c += list[s] > i ? 1 : 0;
+    count[i] = c;
+  }
+};
+
+//! Second pass: the pair of every candidate slot (slot_pair), and each pair's triangles (pair_ij, 2 per pair).
+//! A slot whose partner's list lacks it (which symmetric lists never do) gets -1; the caller checks.
+struct PairIndexKernel {
+  const int *offset, *list, *pair_offset;
+  int *slot_pair, *pair_ij;
+  BLAST_HD void operator()(index_t ti) const {
+    const int i = static_cast<int>(ti);
+    int k = 0;
+    for (int s = offset[i]; s < offset[i + 1]; ++s) {
+      const int j = list[s];
+      if (j > i) {
+        const int p = pair_offset[i] + k++;
+        slot_pair[s] = p;
+        pair_ij[2 * p] = i;
+        pair_ij[2 * p + 1] = j;
+        continue;
+      }
+      int rank = 0, found = -1;
+      for (int t = offset[j]; t < offset[j + 1] && found < 0; ++t) {
+        if (list[t] == i) found = pair_offset[j] + rank;
+        rank += list[t] > j ? 1 : 0;
+      }
+      slot_pair[s] = found;
+    }
+  }
+};
+
+//! 1 for a candidate slot that PairIndexKernel found no pair for (summed to check the lists' symmetry).
+struct UnmatchedSlot {
+  const int* slot_pair;
+  BLAST_HD double operator()(index_t s) const { return slot_pair[s] < 0 ? 1.0 : 0.0; }
+};
+
+//! Contact of one pair (i, j), i < j (Munjiza's distributed potential, contact_kernels.hpp): the loads on
+//! both triangles' nodes from all six edge-against-target evaluations, each evaluated once. Pairs joined by
+//! an intact joint or apart (bounding boxes, then separating axes) are skipped. Pairs that only share a
+//! vertex are tested like any other (Munjiza): their corners overlap by the joints' give, and the small
+//! contact force that makes is part of the model (docs/fdem-solver.md). Writes the pair's touch flag and,
+//! when it touches, its 13 values: loads on i's three nodes (x, y), on j's three, and the friction power [W/m].
+struct ContactPairKernel {
   RockArrays r;
+  const int* pair_ij;
+  std::uint8_t* touch;
+  double* load;
   double penalty, friction, dt;
   BLAST_HD bool joined(int i, int j) const {
     for (int e = 0; e < 3; ++e)
@@ -226,50 +280,69 @@ struct ContactForceKernel {
       }
     return false;
   }
+  BLAST_HD void operator()(index_t p) const {
+    const int i = pair_ij[2 * p], j = pair_ij[2 * p + 1];
+    touch[p] = 0;
+    if (joined(i, j) || boxes_apart(triangle_box(r, i), triangle_box(r, j), 0.0)) return;
+    Vec2 x[2][3];
+    triangle_nodes(r, i, x[0]);
+    triangle_nodes(r, j, x[1]);
+    if (!triangles_overlap(x[0], x[1])) return;
+    Vec2 v[2][3];
+    double m[2][3], mt[2] = {0, 0};
+    for (int side = 0; side < 2; ++side)
+      for (int k = 0; k < 3; ++k) {
+        const int n = 3 * (side == 0 ? i : j) + k;
+        v[side][k] = node_velocity(r, n);
+        m[side][k] = r.mass[n];
+        mt[side] += m[side][k];
+      }
+    Vec2 f[2][3] = {{{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
+    double friction_power = 0;
+    bool touching = false;
+    for (int c = 0; c < 2; ++c) {  // contactor c's edges against target 1 - c
+      const int t = 1 - c;
+      for (int e = 0; e < 3; ++e) {
+        const int e1 = (e + 1) % 3;
+        const EdgeContactLoad l = edge_against_target(x[c][e], x[c][e1], x[t], v[c][e], v[c][e1], v[t],
+                                                      m[c][e] + m[c][e1], mt[t], penalty, friction, dt);
+        if (!l.touching) continue;
+        touching = true;
+        f[c][e] = {f[c][e].x + l.edge[0].x, f[c][e].y + l.edge[0].y};
+        f[c][e1] = {f[c][e1].x + l.edge[1].x, f[c][e1].y + l.edge[1].y};
+        for (int k = 0; k < 3; ++k) f[t][k] = {f[t][k].x + l.target[k].x, f[t][k].y + l.target[k].y};
+        friction_power += l.friction_power;
+      }
+    }
+    if (!touching) return;
+    touch[p] = 1;
+    double* out = load + 13 * p;
+    for (int side = 0; side < 2; ++side)
+      for (int k = 0; k < 3; ++k) out[6 * side + 2 * k] = f[side][k].x, out[6 * side + 2 * k + 1] = f[side][k].y;
+    out[12] = friction_power;
+  }
+};
+
+//! Contact force on each triangle's own nodes: the sum, in the fixed order of its candidate list, of its
+//! side of every touching pair (a gather: no two threads write the same node, the same bytes every run).
+//! The friction dissipation of a pair is booked on its first triangle.
+struct ContactGatherKernel {
+  RockArrays r;
+  const int *slot_pair, *pair_ij;
+  const std::uint8_t* touch;
+  const double* load;
+  double dt;
   BLAST_HD void operator()(index_t ti) const {
     const int i = static_cast<int>(ti);
-    Vec2 pi[3], vi[3];
-    double mi[3];
-    for (int k = 0; k < 3; ++k) {
-      pi[k] = node_position(r, 3 * i + k);
-      vi[k] = node_velocity(r, 3 * i + k);
-      mi[k] = r.mass[3 * i + k];
-    }
-    const Box bi = triangle_box(r, i);
-    const double mti = mi[0] + mi[1] + mi[2];
     Vec2 f[3] = {{0, 0}, {0, 0}, {0, 0}};
     double friction_power = 0;
     for (int s = r.neighbour_offset[i]; s < r.neighbour_offset[i + 1]; ++s) {
-      const int j = r.neighbour_list[s];
-      if (boxes_apart(bi, triangle_box(r, j), 0.0) || joined(i, j)) continue;
-      Vec2 pj[3];
-      triangle_nodes(r, j, pj);
-      if (!triangles_overlap(pi, pj)) continue;
-      Vec2 vj[3];
-      double mtj = 0;
-      for (int k = 0; k < 3; ++k) {
-        vj[k] = node_velocity(r, 3 * j + k);
-        mtj += r.mass[3 * j + k];
-      }
-      // i's edges against j: keep the loads on i's edge nodes.
-      for (int e = 0; e < 3; ++e) {
-        const int e1 = (e + 1) % 3;
-        const EdgeContactLoad c =
-            edge_against_target(pi[e], pi[e1], pj, vi[e], vi[e1], vj, mi[e] + mi[e1], mtj, penalty, friction, dt);
-        if (!c.touching) continue;
-        f[e] = {f[e].x + c.edge[0].x, f[e].y + c.edge[0].y};
-        f[e1] = {f[e1].x + c.edge[1].x, f[e1].y + c.edge[1].y};
-        friction_power += c.friction_power;  // counted once: by the contactor's thread
-      }
-      // j's edges against i: keep the reaction on i's nodes.
-      for (int e = 0; e < 3; ++e) {
-        const int e1 = (e + 1) % 3;
-        const double me = r.mass[3 * j + e] + r.mass[3 * j + e1];
-        const EdgeContactLoad c =
-            edge_against_target(pj[e], pj[e1], pi, vj[e], vj[e1], vi, me, mti, penalty, friction, dt);
-        if (!c.touching) continue;
-        for (int k = 0; k < 3; ++k) f[k] = {f[k].x + c.target[k].x, f[k].y + c.target[k].y};
-      }
+      const int p = slot_pair[s];
+      if (!touch[p]) continue;
+      const int side = pair_ij[2 * p] == i ? 0 : 1;
+      const double* in = load + 13 * static_cast<index_t>(p) + 6 * side;
+      for (int k = 0; k < 3; ++k) f[k] = {f[k].x + in[2 * k], f[k].y + in[2 * k + 1]};
+      if (side == 0) friction_power += load[13 * static_cast<index_t>(p) + 12];
     }
     for (int k = 0; k < 3; ++k) {
       r.f_con_x[3 * i + k] = f[k].x;

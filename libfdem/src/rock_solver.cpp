@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace blastsim::fdem {
@@ -211,8 +212,33 @@ void RockSolver::rebuild_contact_grid() {
   search.r = r2;
   search.list = device_ptr(neighbour_list_);
   for_each_index("fdem.contact.fill", triangles_, search);
+  build_contact_pairs();
   travel_since_build_ = 0;
   ++rebuilds_;
+}
+
+void RockSolver::build_contact_pairs() {
+  const int* offset = device_ptr(neighbour_offset_);
+  const int* list = device_ptr(neighbour_list_);
+  pair_offset_.resize(triangles_ + 1);
+  pair_offset_[triangles_] = 0;
+  for_each_index("fdem.grid.pair_count", triangles_, detail::PairCountKernel{offset, list, device_ptr(pair_offset_)});
+  thrust::exclusive_scan(thrust::device, pair_offset_.begin(), pair_offset_.end(), pair_offset_.begin());
+  const int pairs = pair_offset_.back();
+  pairs_ = pairs;
+  const index_t slots = neighbour_list_.size();
+  slot_pair_.resize(slots);
+  pair_ij_.resize(2 * static_cast<index_t>(std::max(pairs, 1)));
+  pair_touch_.resize(std::max(pairs, 1));
+  pair_load_.resize(13 * static_cast<index_t>(std::max(pairs, 1)));
+  for_each_index("fdem.grid.pair_index", triangles_,
+                 detail::PairIndexKernel{offset, list, device_ptr(pair_offset_), device_ptr(slot_pair_), device_ptr(pair_ij_)});
+  const int used = neighbour_offset_.back();  // the list holds at least one entry even when empty
+  const double unmatched =
+      used == 0 ? 0.0 : reduce_sum("fdem.grid.pair_check", used, 0.0, detail::UnmatchedSlot{device_ptr(slot_pair_)});
+  if (unmatched > 0)
+    throw std::logic_error("contact broad phase: " + std::to_string(static_cast<long>(unmatched)) +
+                           " candidate slots have no partner slot (the candidate lists must be symmetric)");
 }
 
 void RockSolver::step(double dt) {
@@ -259,12 +285,17 @@ void RockSolver::joint_forces() {
   if (joints_ > 0) for_each_index("fdem.joints", joints_, detail::JointForceKernel{arrays()});
 }
 
-// Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction.
+// Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction. Each pair once (one thread a
+// pair), then each triangle gathers its side of its pairs.
 void RockSolver::contact_forces(double dt) {
   if (!options_.contact) return;
-  for_each_index("fdem.contact", triangles_,
-                 detail::ContactForceKernel{arrays(), options_.contact_penalty_factor * material_.youngs_modulus,
-                                            material_.contact_friction, dt});
+  const double penalty = options_.contact_penalty_factor * material_.youngs_modulus;
+  for_each_index("fdem.contact.pairs", pairs_,
+                 detail::ContactPairKernel{arrays(), device_ptr(pair_ij_), device_ptr(pair_touch_), device_ptr(pair_load_),
+                                           penalty, material_.contact_friction, dt});
+  for_each_index("fdem.contact.gather", triangles_,
+                 detail::ContactGatherKernel{arrays(), device_ptr(slot_pair_), device_ptr(pair_ij_),
+                                             device_ptr(pair_touch_), device_ptr(pair_load_), dt});
 }
 
 // Symplectic Euler (fdem.md): gather the node's forces, integrate.
@@ -448,6 +479,7 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   buffer_ = d[6], travel_since_build_ = d[7], stable_dt_ = d[8];
   const std::array<long, 4> n = r.value<std::array<long, 4>>("rock.integers");
   steps_ = n[0], rebuilds_ = n[1], grid_nx_ = static_cast<int>(n[2]), grid_ny_ = static_cast<int>(n[3]);
+  if (options_.contact) build_contact_pairs();
 }
 
 }  // namespace blastsim::fdem

@@ -77,7 +77,7 @@ BLAST_HD inline EdgeContactLoad edge_against_target(const Vec2& p, const Vec2& q
   const double len = sqrt((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y));
   const Vec2 n{(q.y - p.y) / len, -(q.x - p.x) / len};  // outward normal of the contactor's edge
   const Vec2 g{(t[0].x + t[1].x + t[2].x) / 3.0, (t[0].y + t[1].y + t[2].y) / 3.0};
-  const double area2 = cross3(t[0], t[1], t[2]);  // 2 A of the target
+  const double inv_area2 = 1.0 / cross3(t[0], t[1], t[2]);  // 1 / (2 A) of the target
   double load = 0;              // integral of phi_T along the edge [m]
   double w_edge[2] = {0, 0};    // integrals of phi_T times the edge's shape functions
   double w_target[3] = {0, 0, 0};  // integrals of phi_T times the target's barycentric coordinates
@@ -88,20 +88,20 @@ BLAST_HD inline EdgeContactLoad edge_against_target(const Vec2& p, const Vec2& q
     double s0 = 0, s1 = 1;
     if (!clip_to_left(p, q, a, b, s0, s1) || !clip_to_left(p, q, b, g, s0, s1) || !clip_to_left(p, q, g, a, s0, s1))
       continue;
-    const double sub2 = cross3(g, a, b);
+    const double inv_sub2 = 1.0 / cross3(g, a, b);
     const double seg = (s1 - s0) * len;
     // Simpson on [s0, s1]: exact for phi (linear) times a linear shape function.
     const double ss[3] = {s0, 0.5 * (s0 + s1), s1};
     const double ws[3] = {seg / 6.0, 4.0 * seg / 6.0, seg / 6.0};
     for (int m = 0; m < 3; ++m) {
       const Vec2 x{p.x + ss[m] * (q.x - p.x), p.y + ss[m] * (q.y - p.y)};
-      const double phi = cross3(x, a, b) / sub2;
+      const double phi = cross3(x, a, b) * inv_sub2;
       const double wp = ws[m] * phi;
       load += wp;
       w_edge[0] += wp * (1.0 - ss[m]);
       w_edge[1] += wp * ss[m];
       for (int c = 0; c < 3; ++c)  // barycentric coordinate of x for target node c
-        w_target[c] += wp * cross3(x, t[(c + 1) % 3], t[(c + 2) % 3]) / area2;
+        w_target[c] += wp * cross3(x, t[(c + 1) % 3], t[(c + 2) % 3]) * inv_area2;
     }
   }
   if (!(load > 0)) return out;

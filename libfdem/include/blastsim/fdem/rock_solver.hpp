@@ -105,6 +105,7 @@ class RockSolver {
   void rebuild_contact_grid();
 
  private:
+  void build_contact_pairs();  //!< pair numbering from the candidate lists (rebuild, checkpoint read)
   detail::RockArrays arrays();
   template <class Self, class Fn>
   static void for_each_checkpoint_array(Self& self, Fn&& fn);
@@ -146,6 +147,13 @@ class RockSolver {
   // contact broad phase: uniform grid, triangles sorted by cell
   DeviceVector<int> cell_key_, sorted_triangles_, cell_start_, cell_end_;
   DeviceVector<int> neighbour_offset_, neighbour_list_;  // candidates within the buffer, per triangle (CSR)
+  // contact pairs: each candidate pair once (i < j), rebuilt with the lists (not checkpointed: derived)
+  int pairs_ = 0;
+  DeviceVector<int> pair_offset_;  // per triangle (+1): first pair it leads
+  DeviceVector<int> slot_pair_;    // per candidate slot: its pair
+  DeviceVector<int> pair_ij_;      // 2 per pair: i < j
+  DeviceVector<std::uint8_t> pair_touch_;  // per pair, this step: 1 when touching
+  DeviceVector<double> pair_load_;  // 13 per pair, valid when touching: loads on i's and j's nodes, friction power
   double cell_size_ = 0, grid_x0_ = 0, grid_y0_ = 0;
   int grid_nx_ = 0, grid_ny_ = 0;
   double buffer_ = 0, travel_since_build_ = 0;
