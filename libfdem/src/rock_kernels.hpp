@@ -323,6 +323,19 @@ struct ContactPairKernel {
   }
 };
 
+//! ContactPairKernel over the pairs in 64 interleaved blocks (CPU load balance: see RockSolver::contact_forces):
+//! launch index q visits pair (q mod 64) x block_length + q / 64; indices past the last pair do nothing.
+struct InterleavedPairs {
+  static constexpr index_t blocks = 64;
+  ContactPairKernel pair;
+  index_t pairs;
+  static index_t launch_size(index_t n) { return blocks * ((n + blocks - 1) / blocks); }
+  BLAST_HD void operator()(index_t q) const {
+    const index_t p = (q % blocks) * ((pairs + blocks - 1) / blocks) + q / blocks;
+    if (p < pairs) pair(p);
+  }
+};
+
 //! Contact force on each triangle's own nodes: the sum, in the fixed order of its candidate list, of its
 //! side of every touching pair (a gather: no two threads write the same node, the same bytes every run).
 //! The friction dissipation of a pair is booked on its first triangle.

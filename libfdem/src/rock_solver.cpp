@@ -290,9 +290,16 @@ void RockSolver::joint_forces() {
 void RockSolver::contact_forces(double dt) {
   if (!options_.contact) return;
   const double penalty = options_.contact_penalty_factor * material_.youngs_modulus;
-  for_each_index("fdem.contact.pairs", pairs_,
-                 detail::ContactPairKernel{arrays(), device_ptr(pair_ij_), device_ptr(pair_touch_), device_ptr(pair_load_),
-                                           penalty, material_.contact_friction, dt});
+  const detail::ContactPairKernel pair{arrays(), device_ptr(pair_ij_), device_ptr(pair_touch_), device_ptr(pair_load_),
+                                       penalty, material_.contact_friction, dt};
+#if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
+  for_each_index("fdem.contact.pairs", pairs_, pair);  // in pair order: neighbouring threads read neighbouring pairs
+#else
+  // CPU: the static OpenMP schedule gives each thread one contiguous run of pairs, and the pairs that touch
+  // (numbered with their triangles: around the hole and the cracks) bunch up in a few runs. Visiting them in
+  // interleaved blocks spreads them over the threads; a pair's result does not depend on when it runs.
+  for_each_index("fdem.contact.pairs", detail::InterleavedPairs::launch_size(pairs_), detail::InterleavedPairs{pair, pairs_});
+#endif
   for_each_index("fdem.contact.gather", triangles_,
                  detail::ContactGatherKernel{arrays(), device_ptr(slot_pair_), device_ptr(pair_ij_),
                                              device_ptr(pair_touch_), device_ptr(pair_load_), dt});
