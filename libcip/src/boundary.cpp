@@ -78,7 +78,7 @@ struct FillGhostsX {
   BLAST_HD void operator()(int c, int t) const {
     const int g = GasGrid::ghost, nx = grid.nx;
     const int k = c < g + 1 ? c - g : nx + (c - g - 1);  // c in [0, 2g + 2)
-    const BoundaryKind kind = ctx.bc.side[k <= 0 ? left : right];
+    const BoundaryKind kind = kind_of(ctx.bc, k <= 0 ? left : right);
     if (is_ghost(k, nx, false, kind)) {
       fill_one(s.rho, 0, k, t, nx, false, kind, 1.0);
       fill_one(s.e, 0, k, t, nx, false, kind, 1.0);
@@ -97,11 +97,11 @@ struct FillOutflowFaces {
     const int nx = grid.nx, ny = grid.ny;
     if (k < 2 * ny) {
       const int side = k < ny ? left : right, t = static_cast<int>(k < ny ? k : k - ny);
-      if (t < ny && ctx.bc.side[side] == BoundaryKind::outflow) set_outflow_face(s.u, s, grid, ctx, side, t);
+      if (t < ny && kind_of(ctx.bc, side) == BoundaryKind::outflow) set_outflow_face(s.u, s, grid, ctx, side, t);
     } else {
       const index_t m = k - 2 * ny;
       const int side = m < nx ? bottom : top, t = static_cast<int>(m < nx ? m : m - nx);
-      if (ctx.bc.side[side] == BoundaryKind::outflow) set_outflow_face(s.v, s, grid, ctx, side, t);
+      if (kind_of(ctx.bc, side) == BoundaryKind::outflow) set_outflow_face(s.v, s, grid, ctx, side, t);
     }
   }
 };

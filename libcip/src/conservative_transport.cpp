@@ -96,8 +96,8 @@ struct MassFluxKernel {
       energy_flux(i, j) = 0.0;
       return;
     }
-    const double w = (axis == 0 ? s.u.f : s.v.f)(i, j);
-    const Field2D<double>& t = axis == 0 ? s.v.f : s.u.f;  // transverse velocity, averaged to the face
+    const double w = axis == 0 ? s.u.f(i, j) : s.v.f(i, j);
+    const Field2D<double> t = axis == 0 ? s.v.f : s.u.f;  // transverse velocity, averaged to the face
     const double w_t = axis == 0 ? 0.25 * (t(im, j) + t(i, j) + t(im, j + 1) + t(i, j + 1))
                                  : 0.25 * (t(i, jm) + t(i, j) + t(i + 1, jm) + t(i + 1, j));
     const double F = w * swept_value_at(s.rho, axis, im, jm, w, w_t, dt, h, h_t, limiter);
@@ -145,8 +145,8 @@ struct MomentumKernel {
   BLAST_HD int wy(int j) const { return periodic_y ? (j < 0 ? j + ny : (j >= ny ? j - ny : j)) : j; }
 
   BLAST_HD void operator()(int i, int j) const {
-    const CipFieldView& V = axis == 0 ? s.u : s.v;
-    const Field2D<double>& out = axis == 0 ? n.u.f : n.v.f;
+    const CipFieldView V = axis == 0 ? s.u : s.v;
+    const Field2D<double> out = axis == 0 ? n.u.f : n.v.f;
     const Field2D<double>& u = s.u.f;
     const Field2D<double>& v = s.v.f;
     // The two cells beside the face: (ia, ja) on the low side, (i, j) on the high side.

@@ -85,9 +85,9 @@ struct FaceVelocityKernel {
     const int im = axis == 0 ? i - 1 : i, jm = axis == 0 ? j : j - 1;
     const int k = axis == 0 ? i : j, n = axis == 0 ? grid.nx : grid.ny, t = axis == 0 ? j : i;
     const double h = axis == 0 ? grid.dx : grid.dy;
-    double w = (axis == 0 ? old.u : old.v).f(i, j);
+    double w = axis == 0 ? old.u.f(i, j) : old.v.f(i, j);
     const int side = axis == 0 ? (k == 0 ? left : right) : (k == 0 ? bottom : top);
-    if ((k == 0 || k == n) && ctx.bc.side[side] == BoundaryKind::outflow) {
+    if ((k == 0 || k == n) && kind_of(ctx.bc, side) == BoundaryKind::outflow) {
       w = (k == 0 ? -1.0 : 1.0) * outflow_face_from_state(old, grid, ctx, side, t);
     } else if (prescribed(i, j)) {
       w = imposed(i, j);
@@ -163,8 +163,8 @@ struct FaceDerivativeKernel {
   Field2D<const std::uint8_t> prescribed;
   double dt, dx, dy;
   BLAST_HD void operator()(int i, int j) const {
-    const CipFieldView& o = axis == 0 ? old.u : old.v;
-    const CipFieldView& n = axis == 0 ? now.u : now.v;
+    const CipFieldView o = axis == 0 ? old.u : old.v;
+    const CipFieldView n = axis == 0 ? now.u : now.v;
     if (prescribed(i, j)) {
       n.gx(i, j) = 0.0;
       n.gy(i, j) = 0.0;
@@ -248,8 +248,8 @@ struct FaceAdvectionKernel {
   Limiter limiter;
   bool derivatives_only;
   BLAST_HD void operator()(int i, int j) const {
-    const CipFieldView& F = axis == 0 ? from.u : from.v;
-    const CipFieldView& T = axis == 0 ? to.u : to.v;
+    const CipFieldView F = axis == 0 ? from.u : from.v;
+    const CipFieldView T = axis == 0 ? to.u : to.v;
     if (prescribed(i, j)) {
       store(T, i, j, CipPoint{imposed(i, j), 0.0, 0.0}, derivatives_only);
       return;
@@ -390,7 +390,7 @@ struct BoundaryFlowKernel {
     const bool xside = k < 2 * ny;
     const bool low = xside ? k < ny : k - 2 * ny < nx;
     const int side = xside ? (low ? left : right) : (low ? bottom : top);
-    if (bc.side[side] == BoundaryKind::periodic) return {0, 0, 0, 0, 0};  // what leaves comes back in
+    if (kind_of(bc, side) == BoundaryKind::periodic) return {0, 0, 0, 0, 0};  // what leaves comes back in
     const int t = static_cast<int>(xside ? (low ? k : k - ny) : (low ? k - 2 * ny : k - 2 * ny - nx));
     const int b = low ? 0 : (xside ? nx - 1 : ny - 1), f = low ? 0 : (xside ? nx : ny);
     const double sgn = low ? -1.0 : 1.0, len = xside ? g.dy : g.dx;

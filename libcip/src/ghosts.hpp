@@ -32,7 +32,7 @@ BLAST_HD inline double outflow_face_from_state(const GasStateView& s, const GasG
   double p_face = 1.5 * p_b - 0.5 * p_i;
   if (!(p_face > 0.0)) p_face = p_b;
   const int r = side == left ? t : side == right ? g.ny + t : side == bottom ? 2 * g.ny + t : 2 * g.ny + g.nx + t;
-  const Field2D<double>& w = xside ? s.u.f : s.v.f;
+  const Field2D<double> w = xside ? s.u.f : s.v.f;
   return outflow_face_velocity(sign * at(w, fi), ctx.reference.velocity[r], p_face, ctx.reference.pressure[r], rho,
                                ctx.eos.sound_speed(rho, e));
 }

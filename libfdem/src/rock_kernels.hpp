@@ -290,7 +290,9 @@ struct ContactPairKernel {
     if (!triangles_overlap(x[0], x[1])) return;
     Vec2 v[2][3];
     double m[2][3], mt[2] = {0, 0};
+    BLAST_UNROLL
     for (int side = 0; side < 2; ++side)
+      BLAST_UNROLL
       for (int k = 0; k < 3; ++k) {
         const int n = 3 * (side == 0 ? i : j) + k;
         v[side][k] = node_velocity(r, n);
@@ -300,8 +302,10 @@ struct ContactPairKernel {
     Vec2 f[2][3] = {{{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
     double friction_power = 0;
     bool touching = false;
+    BLAST_UNROLL
     for (int c = 0; c < 2; ++c) {  // contactor c's edges against target 1 - c
       const int t = 1 - c;
+      BLAST_UNROLL
       for (int e = 0; e < 3; ++e) {
         const int e1 = (e + 1) % 3;
         const EdgeContactLoad l = edge_against_target(x[c][e], x[c][e1], x[t], v[c][e], v[c][e1], v[t],
@@ -310,6 +314,7 @@ struct ContactPairKernel {
         touching = true;
         f[c][e] = {f[c][e].x + l.edge[0].x, f[c][e].y + l.edge[0].y};
         f[c][e1] = {f[c][e1].x + l.edge[1].x, f[c][e1].y + l.edge[1].y};
+        BLAST_UNROLL
         for (int k = 0; k < 3; ++k) f[t][k] = {f[t][k].x + l.target[k].x, f[t][k].y + l.target[k].y};
         friction_power += l.friction_power;
       }
@@ -317,7 +322,9 @@ struct ContactPairKernel {
     if (!touching) return;
     touch[p] = 1;
     double* out = load + 13 * p;
+    BLAST_UNROLL
     for (int side = 0; side < 2; ++side)
+      BLAST_UNROLL
       for (int k = 0; k < 3; ++k) out[6 * side + 2 * k] = f[side][k].x, out[6 * side + 2 * k + 1] = f[side][k].y;
     out[12] = friction_power;
   }

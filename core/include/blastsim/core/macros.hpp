@@ -10,6 +10,13 @@
 #define BLAST_HD
 #endif
 
+//! Unrolls the next loop in device code (so that small arrays indexed by its counter stay in registers).
+#if defined(__CUDA_ARCH__)
+#define BLAST_UNROLL _Pragma("unroll")
+#else
+#define BLAST_UNROLL
+#endif
+
 namespace blastsim {
 
 using index_t = std::int64_t;

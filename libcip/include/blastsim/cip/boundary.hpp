@@ -24,6 +24,12 @@ struct BoundaryConditions {
   static BoundaryConditions all(BoundaryKind k) { return BoundaryConditions{{k, k, k, k}}; }
 };
 
+//! bc.side[s] without indexing the array by a run-time value: in a CUDA kernel such an index makes the
+//! compiler copy the whole kernel argument to local memory (ptxas: a stack frame of about 1 kB).
+BLAST_HD inline BoundaryKind kind_of(const BoundaryConditions& bc, int s) {
+  return s == left ? bc.side[left] : s == right ? bc.side[right] : s == bottom ? bc.side[bottom] : bc.side[top];
+}
+
 const char* to_string(BoundaryKind k);
 //! Parses "outflow" | "wall" | "periodic"; returns false on anything else.
 bool parse_boundary_kind(const std::string& text, BoundaryKind& out);
