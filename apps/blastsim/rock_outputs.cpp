@@ -136,10 +136,8 @@ fdem::RockEnergies RockOutputs::monitor() {
   const double balance = e.kinetic + e.strain + e.joint_work + e.contact_work + e.damping_dissipated -
                          (e0_.kinetic + e0_.strain + e.external_work);
   std::string reactions;  // of the supports on the loaded nodes: the platen force, with the sign of the axes
-  for (const std::vector<int>& nodes : velocity_nodes_) {
-    const std::array<double, 2> f = solver_.support_reaction(nodes);
+  for (const std::array<double, 2>& f : solver_.support_reactions(velocity_nodes_))
     reactions += fmt::format(",{:.9e},{:.9e}", f[0], f[1]);
-  }
   series_.row(fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e}",
                          solver_.steps(), solver_.time(), e.kinetic, e.strain, e.joint_work, e.fracture_dissipated,
                          e.contact_work, e.friction_dissipated, e.damping_dissipated, e.external_work, balance,

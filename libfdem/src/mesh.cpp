@@ -117,10 +117,6 @@ TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y
   return m;
 }
 
-}  // namespace blastsim::fdem
-
-namespace blastsim::fdem {
-
 NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, double h) {
   if (!(r_hole > 0) || !(r > r_hole) || !(h > 0) || !(h < r - r_hole))
     throw InputError("ring_disc_with_hole: need 0 < hole radius < radius and 0 < element size < radius - hole radius");

@@ -41,9 +41,8 @@ BLAST_HD inline Box triangle_box(const RockArrays& r, int t) {
   Box b{1e300, 1e300, -1e300, -1e300};
   for (int k = 0; k < 3; ++k) {
     const double x = r.x[3 * t + k], y = r.y[3 * t + k];
-    // Plain comparisons, not fmin/fmax (a libm call on the CPU; positions are finite: step() checks speeds).
-    b.lo_x = x < b.lo_x ? x : b.lo_x, b.lo_y = y < b.lo_y ? y : b.lo_y;
-    b.hi_x = x > b.hi_x ? x : b.hi_x, b.hi_y = y > b.hi_y ? y : b.hi_y;
+    // min_of / max_of, not fmin / fmax (positions are finite: step() checks the speeds).
+    b.lo_x = min_of(x, b.lo_x), b.lo_y = min_of(y, b.lo_y), b.hi_x = max_of(b.hi_x, x), b.hi_y = max_of(b.hi_y, y);
   }
   return b;
 }
@@ -336,9 +335,11 @@ struct InterleavedPairs {
   static constexpr index_t blocks = 64;
   ContactPairKernel pair;
   index_t pairs;
-  static index_t launch_size(index_t n) { return blocks * ((n + blocks - 1) / blocks); }
+  index_t block_length;  //!< block_length_for(pairs)
+  static index_t block_length_for(index_t n) { return (n + blocks - 1) / blocks; }
+  index_t launch_size() const { return blocks * block_length; }
   BLAST_HD void operator()(index_t q) const {
-    const index_t p = (q % blocks) * ((pairs + blocks - 1) / blocks) + q / blocks;
+    const index_t p = (q % blocks) * block_length + q / blocks;
     if (p < pairs) pair(p);
   }
 };

@@ -234,8 +234,7 @@ void RockSolver::build_contact_pairs() {
   for_each_index("fdem.grid.pair_index", triangles_,
                  detail::PairIndexKernel{offset, list, device_ptr(pair_offset_), device_ptr(slot_pair_), device_ptr(pair_ij_)});
   const int used = neighbour_offset_.back();  // the list holds at least one entry even when empty
-  const double unmatched =
-      used == 0 ? 0.0 : reduce_sum("fdem.grid.pair_check", used, 0.0, detail::UnmatchedSlot{device_ptr(slot_pair_)});
+  const double unmatched = reduce_sum("fdem.grid.pair_check", used, 0.0, detail::UnmatchedSlot{device_ptr(slot_pair_)});
   if (unmatched > 0)
     throw std::logic_error("contact broad phase: " + std::to_string(static_cast<long>(unmatched)) +
                            " candidate slots have no partner slot (the candidate lists must be symmetric)");
@@ -298,7 +297,8 @@ void RockSolver::contact_forces(double dt) {
   // CPU: the static OpenMP schedule gives each thread one contiguous run of pairs, and the pairs that touch
   // (numbered with their triangles: around the hole and the cracks) bunch up in a few runs. Visiting them in
   // interleaved blocks spreads them over the threads; a pair's result does not depend on when it runs.
-  for_each_index("fdem.contact.pairs", detail::InterleavedPairs::launch_size(pairs_), detail::InterleavedPairs{pair, pairs_});
+  const detail::InterleavedPairs interleaved{pair, pairs_, detail::InterleavedPairs::block_length_for(pairs_)};
+  for_each_index("fdem.contact.pairs", interleaved.launch_size(), interleaved);
 #endif
   for_each_index("fdem.contact.gather", triangles_,
                  detail::ContactGatherKernel{arrays(), device_ptr(slot_pair_), device_ptr(pair_ij_),
@@ -424,10 +424,15 @@ RockEnergies RockSolver::energies() {
 }
 
 std::array<double, 2> RockSolver::support_reaction(const std::vector<int>& nodes) const {
+  return support_reactions({nodes})[0];
+}
+
+std::vector<std::array<double, 2>> RockSolver::support_reactions(const std::vector<std::vector<int>>& groups) const {
   const std::vector<double> f = to_host(support_);
-  std::array<double, 2> sum{0.0, 0.0};
-  for (int n : nodes) sum[0] += f[2 * n], sum[1] += f[2 * n + 1];
-  return sum;
+  std::vector<std::array<double, 2>> sums(groups.size(), {0.0, 0.0});
+  for (size_t g = 0; g < groups.size(); ++g)
+    for (int n : groups[g]) sums[g][0] += f[2 * n], sums[g][1] += f[2 * n + 1];
+  return sums;
 }
 
 double RockSolver::contact_force_norm() {

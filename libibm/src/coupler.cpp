@@ -17,9 +17,6 @@ namespace {
 
 BLAST_HD inline int imax(int a, int b) { return a > b ? a : b; }
 BLAST_HD inline int imin(int a, int b) { return a < b ? a : b; }
-//! min / max of finite doubles without fmin/fmax (a libm call on the CPU).
-BLAST_HD inline double dmin(double a, double b) { return a < b ? a : b; }
-BLAST_HD inline double dmax(double a, double b) { return a > b ? a : b; }
 
 //! A pair of sums for device reductions (forces).
 struct Vec2Sum {
@@ -37,8 +34,8 @@ struct CoverKernel {
     const int t = static_cast<int>(ti);
     double x[3], y[3];
     for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
-    const double x0 = dmin(x[0], dmin(x[1], x[2])), x1 = dmax(x[0], dmax(x[1], x[2]));
-    const double y0 = dmin(y[0], dmin(y[1], y[2])), y1 = dmax(y[0], dmax(y[1], y[2]));
+    const double x0 = min_of(x[0], min_of(x[1], x[2])), x1 = max_of(x[0], max_of(x[1], x[2]));
+    const double y0 = min_of(y[0], min_of(y[1], y[2])), y1 = max_of(y[0], max_of(y[1], y[2]));
     for (int face = 0; face < 2; ++face) {
       // x-faces sit at (x_min + i dx, y_min + (j + 1/2) dy), y-faces at (x_min + (i + 1/2) dx, y_min + j dy).
       const double ox = face == 0 ? 0.0 : 0.5, oy = face == 0 ? 0.5 : 0.0;

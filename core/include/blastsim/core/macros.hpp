@@ -21,6 +21,11 @@ namespace blastsim {
 
 using index_t = std::int64_t;
 
+//! min / max of two doubles by plain comparison, on host and device (std::fmin / fmax are a libm call on the
+//! CPU; the kernels use these on finite values only).
+BLAST_HD inline double min_of(double a, double b) { return a < b ? a : b; }
+BLAST_HD inline double max_of(double a, double b) { return a < b ? b : a; }
+
 //! Name of the backend this build's kernels run on, for logs and benchmark reports. Correct in host-only
 //! translation units too (the build defines BLASTSIM_BACKEND_CUDA for a CUDA build).
 inline const char* backend_name() {

@@ -21,9 +21,6 @@ struct CipPoint {
   double gy;  //!< df/dy
 };
 
-BLAST_HD inline double min_of(double a, double b) { return a < b ? a : b; }
-BLAST_HD inline double max_of(double a, double b) { return a < b ? b : a; }
-
 //! 1-D CIP (Yabe & Aoki 1991, eq. 10-12): cubic Hermite through the point i and its upwind neighbour,
 //! shifted by xi = -u dt. D = -sign(u) dx is the offset of the upwind point. Returns {f, g, 0}.
 BLAST_HD inline CipPoint cip_advect_1d(double f_i, double g_i, double f_up, double g_up, double D, double xi,

@@ -89,6 +89,8 @@ class RockSolver {
   RockSnapshot snapshot() const;
   //! Total force [N/m] that the prescribed-velocity supports exerted on `nodes` in the last step.
   std::array<double, 2> support_reaction(const std::vector<int>& nodes) const;
+  //! support_reaction() of each group of nodes, from one copy of the support forces.
+  std::vector<std::array<double, 2>> support_reactions(const std::vector<std::vector<int>>& groups) const;
   //! Sum over nodes of the contact force magnitude [N/m] of the last step (0: nothing touches).
   double contact_force_norm();
   double time() const { return time_; }
