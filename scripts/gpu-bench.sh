@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One device call on the GPU machine: build the CUDA backend, run the test suite on the GPU, run
 # compute-sanitizer (memcheck) on a small case, then the benchmarks; logs under $OUT, a short table last.
-# Usage (device tool, carrying .deps made by ../shared/tools/device-deps.sh):  bash scripts/gpu-bench.sh [quick]
+# Usage (device tool, carrying .deps made by scripts/device-deps.sh):  bash scripts/gpu-bench.sh [quick]
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:-$PWD/out}

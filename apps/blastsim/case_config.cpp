@@ -72,12 +72,12 @@ void read_gas_sections(TableReader& root, CaseConfig& c) {
   c.solver.limiter =
       gas.text("limiter", {"minmax", "none"}, std::string("minmax")) == "none" ? cip::Limiter::none : cip::Limiter::minmax;
   TableReader bc = gas.table("boundary");
-  c.solver.boundaries.side = {read_boundary(bc, "left"), read_boundary(bc, "right"), read_boundary(bc, "bottom"),
-                              read_boundary(bc, "top")};
+  c.solver.boundaries.set(cip::left, read_boundary(bc, "left")).set(cip::right, read_boundary(bc, "right"));
+  c.solver.boundaries.set(cip::bottom, read_boundary(bc, "bottom")).set(cip::top, read_boundary(bc, "top"));
   bc.finish();
   for (int a = 0; a < 2; ++a)
-    if ((c.solver.boundaries.side[2 * a] == cip::BoundaryKind::periodic) !=
-        (c.solver.boundaries.side[2 * a + 1] == cip::BoundaryKind::periodic))
+    if ((c.solver.boundaries.kind(2 * a) == cip::BoundaryKind::periodic) !=
+        (c.solver.boundaries.kind(2 * a + 1) == cip::BoundaryKind::periodic))
       throw InputError(fmt::format("gas.boundary.{} and gas.boundary.{} must both be \"periodic\" or neither",
                                    a == 0 ? "left" : "bottom", a == 0 ? "right" : "top"));
   TableReader ambient = gas.table("ambient", true);
@@ -136,11 +136,10 @@ CaseConfig read_case(const toml::table& input) {
   CaseConfig c;
   TableReader root(input, "", c.echo);
   read_gas_sections(root, c);
-  TableReader time = root.table("time", true);
-  c.end_time = time.number("end", "s", Range::positive());
-  c.fixed_dt = time.optional_number("dt", "s", Range::positive());
-  c.max_steps = time.integer("max_steps", "", 0, 0);
-  time.finish();
+  const TimeKeys time = read_time_keys(root, CaseKind::gas);
+  c.end_time = time.end;
+  c.fixed_dt = time.dt;
+  c.max_steps = time.max_steps;
 
   TableReader out = root.table("output");
   assign_output_basics(read_output_basics(out, 1), c);
@@ -149,6 +148,18 @@ CaseConfig read_case(const toml::table& input) {
 
   root.finish();
   return c;
+}
+
+TimeKeys read_time_keys(TableReader& root, CaseKind kind) {
+  TimeKeys k;
+  TableReader time = root.table("time", true);
+  k.end = time.number("end", "s", Range::positive());
+  k.dt = time.optional_number("dt", "s", Range::positive());
+  k.max_steps = time.integer("max_steps", "", 0, 0);
+  if (kind != CaseKind::gas) k.step_fraction = time.number("step_fraction", "", Range::half_open(0.0, 1.0), 0.9);
+  if (kind == CaseKind::coupled) k.rock_subcycling = time.boolean("rock_subcycling", false);
+  time.finish();
+  return k;
 }
 
 OutputBasics read_output_basics(TableReader& out, long long monitor_default) {

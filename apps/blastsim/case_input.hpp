@@ -7,6 +7,7 @@
 #include "rock_config.hpp"
 #include "input_reader.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,20 @@ CaseConfig load_case(const std::string& input_path, const std::vector<std::strin
 
 //! Same from an already parsed table (tests).
 CaseConfig read_case(const toml::table& input);
+
+//! What a parsed input describes: [gas] alone, [rock] alone, or both (a coupled gas-rock case).
+enum class CaseKind { gas, rock, coupled };
+
+//! The [time] keys, read in one place for every kind of case: end, dt and max_steps always; step_fraction
+//! for cases with rock; rock_subcycling for coupled cases (a key of another kind is refused as unknown).
+struct TimeKeys {
+  double end = 0;                 //!< time.end [s]
+  std::optional<double> dt;       //!< time.dt [s]
+  long long max_steps = 0;        //!< time.max_steps, 0: no limit
+  double step_fraction = 0.9;     //!< time.step_fraction [-] (rock)
+  bool rock_subcycling = false;   //!< time.rock_subcycling (coupled)
+};
+TimeKeys read_time_keys(TableReader& root, CaseKind kind);
 
 //! Output keys shared by gas and rock cases ([output] directory, interval, vtk, progress_interval,
 //! monitor_interval); the caller reads its own keys and calls finish().
@@ -45,8 +60,6 @@ void assign_output_basics(const OutputBasics& b, Config& c) {
 //! Parses a case file and applies the overrides (the first half of load_case()).
 toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides);
 
-//! What a parsed input describes: [gas] alone, [rock] alone, or both (a coupled gas-rock case).
-enum class CaseKind { gas, rock, coupled };
 CaseKind case_kind(const toml::table& input);
 
 //! Reads and validates a rock-only case; InputError names the key, the value and what is allowed.

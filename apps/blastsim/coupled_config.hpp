@@ -3,9 +3,11 @@
 #pragma once
 
 #include "blastsim/cip/gas_types.hpp"
+#include "blastsim/ibm/blasthole_monitor.hpp"
 #include "case_config.hpp"
 #include "rock_config.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,7 +27,12 @@ struct CoupledCaseConfig {
   //! time.rock_subcycling: the gas steps at its own Courant limit and the rock takes as many steps of at most
   //! its stable step as fill each gas step (false: one dt for both, the paper's scheme).
   bool rock_subcycling = false;
-  double monitor_interval = 1e-6;      //!< monitor.interval [s]: wall_series.csv (disc-with-hole rock)
+  //! [monitor.blasthole]: the blasthole monitor (wall_series.csv, summary.txt), when given.
+  struct Blasthole {
+    ibm::BlastholeGeometry geometry;
+    double interval = 1e-6;  //!< [s] between samples
+  };
+  std::optional<Blasthole> blasthole;
   std::vector<std::string> echo;
 };
 

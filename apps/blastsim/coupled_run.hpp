@@ -3,7 +3,7 @@
 #pragma once
 
 #include "coupled_config.hpp"
-#include "gas_run.hpp"
+#include "run_loop.hpp"
 
 #include <iosfwd>
 

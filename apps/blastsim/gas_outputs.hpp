@@ -3,11 +3,13 @@
 //! monitor (gas_totals.csv); shared by gas-only and coupled runs. Include only from kernel sources.
 #pragma once
 
+#include "blastsim/cip/balance.hpp"
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/error.hpp"
 #include "case_config.hpp"
 #include "output_checkpoint.hpp"
+#include "run_loop.hpp"
 #include "vtk_gas_writer.hpp"
 
 #include <fmt/format.h>
@@ -21,19 +23,6 @@
 #include <vector>
 
 namespace blastsim::app {
-
-//! "hh:mm:ss" of a duration in seconds, for progress lines.
-inline std::string hms(double seconds) {
-  const long s = static_cast<long>(std::lround(std::max(seconds, 0.0)));
-  return fmt::format("{:02d}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
-}
-
-//! One progress line: step, time, dt, fraction done, elapsed and estimated remaining wall time, `extra`.
-inline std::string progress_line(long long step, double t, double dt, double end, double elapsed, const std::string& extra) {
-  const double frac = t / end;
-  return fmt::format("step {:>8}  t = {:.4e} s  dt = {:.3e} s  {:5.1f} %  elapsed {}  left {}{}\n", step, t, dt,
-                     100 * frac, hms(elapsed), hms(elapsed * (1 - frac) / frac), extra);
-}
 
 //! Throws InputError when a fixed dt [s] violates the Courant limit at the gas's signal rate [1/s].
 inline void check_fixed_dt_courant(double dt, double rate, double courant, const cip::GasSolver& solver) {
@@ -185,8 +174,8 @@ class GasOutputs {
     const cip::GasTotals s = solver_.totals();
     const cip::BoundaryOutflow& o = solver_.boundary_outflow();
     if (solver_.steps() == 0) initial_ = s;
-    const double mass_drift = (s.mass + o.mass) / initial_.mass - 1;
-    const double energy_drift = (s.total_energy() + o.energy) / initial_.total_energy() - 1;
+    const cip::BalanceDrift drift = cip::balance_drift(s, o, initial_);
+    const double mass_drift = drift.mass, energy_drift = drift.energy;
     totals_.row(fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
                            "{:.12e},{:.6e},{:.6e}",
                            solver_.steps(), solver_.time(), dt, s.mass, s.momentum_x, s.momentum_y, s.internal_energy,

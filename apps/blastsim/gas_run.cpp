@@ -1,16 +1,55 @@
 //! \file gas_run.cpp
-//! \brief The gas-only time loop of the driver and its outputs (VTK series, CSV probes, totals).
+//! \brief A gas-only case of the driver: the gas stepper (Courant dt, stability guard) and its outputs (VTK
+//! series, CSV probes, totals) in the run loop.
 #include "gas_run.hpp"
 
 #include "blastsim/core/error.hpp"
 #include "gas_outputs.hpp"
-
-#include <chrono>
+#include "run_loop.hpp"
 
 namespace blastsim::app {
 
 namespace {
-using Clock = std::chrono::steady_clock;
+
+//! The gas solver in the run loop: dt from the Courant number (or time.dt, checked against it), landing on
+//! output events; every new state checked before anything writes it.
+class GasStepper : public Stepper {
+ public:
+  GasStepper(const CaseConfig& c, cip::GasSolver& solver)
+      : c_(c), solver_(solver), rate_(checked_signal_rate(solver, c.output_directory)) {}
+  double time() const override { return solver_.time(); }
+  long long steps() const override { return solver_.steps(); }
+  double next_dt(double until) override {
+    if (c_.fixed_dt) {
+      check_fixed_dt_courant(*c_.fixed_dt, rate_, c_.courant, solver_);
+      return *c_.fixed_dt;
+    }
+    double dt = c_.courant / rate_;
+    if (solver_.time() + dt > until) dt = until - solver_.time();
+    return dt;
+  }
+  void step(double dt) override {
+    solver_.step(dt);
+    rate_ = checked_signal_rate(solver_, c_.output_directory);
+  }
+
+ private:
+  const CaseConfig& c_;
+  cip::GasSolver& solver_;
+  double rate_;  // signal rate [1/s] of the current state
+};
+
+class GasRunOutputs : public RunOutputs {
+ public:
+  explicit GasRunOutputs(GasOutputs& out) : out_(out) {}
+  double next_event(double t) const override { return out_.next_event(t); }
+  void after_step(double dt, bool last) override { out_.write_due(dt, last); }
+  void finish() override {}
+
+ private:
+  GasOutputs& out_;
+};
+
 }  // namespace
 
 void run_gas_case(const CaseConfig& c, std::ostream& log, const RunOptions& options) {
@@ -20,38 +59,9 @@ void run_gas_case(const CaseConfig& c, std::ostream& log, const RunOptions& opti
   solver.initialise([&](double x, double y) { return c.initial_state(x, y); });
   GasOutputs out(c, solver, log);
   out.write_due(0.0, true);
-
-  const auto wall_start = Clock::now();
-  auto last_progress = wall_start;
-  double dt = 0.0;
-  auto checked_rate = [&] { return checked_signal_rate(solver, c.output_directory); };
-  double rate = checked_rate();
-  while (solver.time() < c.end_time * (1 - 1e-12)) {
-    if (c.max_steps > 0 && solver.steps() >= c.max_steps) {
-      log << fmt::format("stopping at time.max_steps = {} (t = {:.6e} s)\n", c.max_steps, solver.time());
-      break;
-    }
-    if (c.fixed_dt) {
-      dt = *c.fixed_dt;
-      check_fixed_dt_courant(dt, rate, c.courant, solver);
-    } else {
-      dt = c.courant / rate;
-      const double next = out.next_event(solver.time());
-      if (solver.time() + dt > next) dt = next - solver.time();
-    }
-    solver.step(dt);
-    rate = checked_rate();
-    const bool last = solver.time() >= c.end_time * (1 - 1e-12);
-    out.write_due(dt, last);
-    const auto now = Clock::now();
-    const double since = std::chrono::duration<double>(now - last_progress).count();
-    if (!options.quiet && (since >= c.progress_interval || last)) {
-      log << progress_line(solver.steps(), solver.time(), dt, c.end_time,
-                           std::chrono::duration<double>(now - wall_start).count(), "")
-          << std::flush;
-      last_progress = now;
-    }
-  }
+  GasStepper stepper(c, solver);
+  GasRunOutputs outputs(out);
+  run_loop(stepper, outputs, RunControl{c.end_time, c.max_steps, c.progress_interval}, log, options);
 }
 
 }  // namespace blastsim::app

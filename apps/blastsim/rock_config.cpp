@@ -132,11 +132,11 @@ RockCaseConfig read_rock_case(const toml::table& input) {
   TableReader root(input, "", c.echo);
   read_rock_section(root, c);
 
-  TableReader time = root.table("time", true);
-  c.end_time = time.number("end", "s", Range::positive());
-  c.fixed_dt = time.optional_number("dt", "s", Range::positive());
-  c.step_fraction = time.number("step_fraction", "", Range::half_open(0.0, 1.0), 0.9);
-  time.finish();
+  const TimeKeys time = read_time_keys(root, CaseKind::rock);
+  c.end_time = time.end;
+  c.fixed_dt = time.dt;
+  c.max_steps = time.max_steps;
+  c.step_fraction = time.step_fraction;
 
   TableReader out = root.table("output");
   assign_output_basics(read_output_basics(out, 10), c);
@@ -156,14 +156,13 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
   if (c.rock.pressure_ramp_time > 0)
     throw InputError("rock.pressure_ramp_time: not used in a coupled case (the gas loads the rock); remove it");
 
-  TableReader time = root.table("time", true);
-  c.gas.end_time = c.rock.end_time = time.number("end", "s", Range::positive());
-  c.gas.fixed_dt = c.rock.fixed_dt = time.optional_number("dt", "s", Range::positive());
-  c.rock.step_fraction = time.number("step_fraction", "", Range::half_open(0.0, 1.0), 0.9);
-  c.gas.max_steps = time.integer("max_steps", "", 0, 0);
-  c.rock_subcycling = time.boolean("rock_subcycling", false);
+  const TimeKeys time = read_time_keys(root, CaseKind::coupled);
+  c.gas.end_time = c.rock.end_time = time.end;
+  c.gas.fixed_dt = c.rock.fixed_dt = time.dt;
+  c.rock.step_fraction = time.step_fraction;
+  c.gas.max_steps = c.rock.max_steps = time.max_steps;
+  c.rock_subcycling = time.rock_subcycling;
   if (c.rock_subcycling) c.rock.fixed_dt.reset();  // time.dt is the gas step; the rock divides it (docs/coupling.md)
-  time.finish();
 
   TableReader out = root.table("output");
   const OutputBasics basics = read_output_basics(out, 10);
@@ -174,7 +173,23 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
   out.finish();
 
   TableReader monitor = root.table("monitor");
-  c.monitor_interval = monitor.number("interval", "s", Range::positive(), 1e-6);
+  if (monitor.has("interval"))
+    throw InputError("monitor.interval: moved to monitor.blasthole.interval [s]; the blasthole monitor (wall_series.csv, "
+                     "summary.txt) now runs when the input has a [monitor.blasthole] table with center, hole_radius, "
+                     "outer_radius and interval (docs/input.md)");
+  if (monitor.has("blasthole")) {
+    TableReader b = monitor.table("blasthole");
+    CoupledCaseConfig::Blasthole spec;
+    spec.geometry.center = b.pair("center", "m");
+    spec.geometry.hole_radius = b.number("hole_radius", "m", Range::positive());
+    spec.geometry.outer_radius = b.number("outer_radius", "m", Range::positive());
+    if (!(spec.geometry.outer_radius > spec.geometry.hole_radius))
+      throw InputError(fmt::format("monitor.blasthole.outer_radius = {} m: must exceed monitor.blasthole.hole_radius = {} m",
+                                   spec.geometry.outer_radius, spec.geometry.hole_radius));
+    spec.interval = b.number("interval", "s", Range::positive(), 1e-6);
+    b.finish();
+    c.blasthole = spec;
+  }
   for (TableReader& r : monitor.table_array("region")) {
     MonitorRegion m;
     m.name = r.text("name", {});

@@ -48,6 +48,7 @@ struct RockCaseConfig {
   double pressure_ramp_time = 0;   //!< [s] pressures rise as a half cosine over this time (0: at once)
   double end_time = 0;             //!< [s]
   std::optional<double> fixed_dt;  //!< [s]
+  long long max_steps = 0;         //!< 0: no limit
   double step_fraction = 0.9;      //!< dt = step_fraction x stable step when no dt is given
   std::string output_directory;
   double output_interval = 0;      //!< [s] between .vtu snapshots (0: start and end)

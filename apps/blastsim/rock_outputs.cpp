@@ -3,6 +3,7 @@
 #include "rock_outputs.hpp"
 
 #include "blastsim/core/error.hpp"
+#include "blastsim/fdem/rock_analysis.hpp"
 #include "vtk_rock_writer.hpp"
 
 #include <fmt/format.h>
@@ -133,8 +134,7 @@ void RockOutputs::snapshot() {
 
 fdem::RockEnergies RockOutputs::monitor() {
   const fdem::RockEnergies e = solver_.energies();
-  const double balance = e.kinetic + e.strain + e.joint_work + e.contact_work + e.damping_dissipated -
-                         (e0_.kinetic + e0_.strain + e.external_work);
+  const double balance = fdem::energy_residual(e, e0_);
   std::string reactions;  // of the supports on the loaded nodes: the platen force, with the sign of the axes
   for (const std::array<double, 2>& f : solver_.support_reactions(velocity_nodes_))
     reactions += fmt::format(",{:.9e},{:.9e}", f[0], f[1]);

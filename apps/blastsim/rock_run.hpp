@@ -2,7 +2,7 @@
 //! \brief Runs a rock-only case of the driver: mesh, loads, time loop, .vtu series, energy time series, progress.
 #pragma once
 
-#include "gas_run.hpp"
+#include "run_loop.hpp"
 #include "rock_config.hpp"
 
 #include <iosfwd>

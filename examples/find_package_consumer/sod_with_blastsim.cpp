@@ -8,7 +8,7 @@
 int main() {
   using namespace blastsim::cip;
   GasSolverOptions options;
-  options.boundaries.side = {BoundaryKind::outflow, BoundaryKind::outflow, BoundaryKind::wall, BoundaryKind::wall};
+  options.boundaries = BoundaryConditions::all(BoundaryKind::outflow).set(bottom, BoundaryKind::wall).set(top, BoundaryKind::wall);
   const EquationOfState eos = EquationOfState::ideal(1.4);
   GasSolver gas(GasGrid::from_box(200, 3, 0.0, 1.0, 0.0, 0.015), eos, options);
   gas.initialise([&](double x, double) {

@@ -2,8 +2,7 @@
 //! \brief Ghost-value kernels for the outer boundaries of the staggered gas grid.
 #include "ghosts.hpp"
 
-#include "blastsim/cip/gas_state.hpp"
-#include "blastsim/cip/grid.hpp"
+#include "blastsim/core/backend.hpp"
 
 namespace blastsim::cip {
 
@@ -136,7 +135,7 @@ void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryConte
   for_each_cell("cip.ghosts.x", 0, 2 * g + 2, 0, grid.ny + 1, detail::FillGhostsX{s, grid, ctx});
   // y pass over every column of the padded array.
   for_each_cell("cip.ghosts.y", -g, grid.nx + 1 + g, 0, 2 * g + 2,
-                detail::FillGhostsY{s, grid.ny, bc.side[bottom], bc.side[top]});
+                detail::FillGhostsY{s, grid.ny, bc.kind(bottom), bc.kind(top)});
 }
 
 }  // namespace blastsim::cip

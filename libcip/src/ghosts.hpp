@@ -2,40 +2,9 @@
 //! \brief Internal: the ghost-fill launcher and the per-step views shared by the gas solver's phases.
 #pragma once
 
-#include "blastsim/cip/boundary.hpp"
-#include "blastsim/cip/eos.hpp"
-#include "blastsim/cip/gas_state.hpp"
-#include "blastsim/cip/grid.hpp"
+#include "blastsim/cip/boundary_kernels.hpp"
 
 namespace blastsim::cip {
-
-//! What the ghost fill needs besides the state: the boundary kinds, and for outflow sides the equation of
-//! state and the reference state of the characteristic condition.
-struct BoundaryContext {
-  BoundaryConditions bc;
-  EquationOfState eos;
-  OutflowReference reference;
-};
-
-//! Outward-normal velocity of the outflow boundary face on `side` at row/column t, from the cell state of
-//! s (cells b = boundary cell, bi = its inner neighbour; inner face fi). Shared by the fill and the step.
-BLAST_HD inline double outflow_face_from_state(const GasStateView& s, const GasGrid& g, const BoundaryContext& ctx,
-                                               int side, int t) {
-  const bool xside = side == left || side == right;
-  const bool low = side == left || side == bottom;
-  const int n = xside ? g.nx : g.ny;
-  const int b = low ? 0 : n - 1, bi = low ? 1 : n - 2, fi = low ? 1 : n - 1;
-  const double sign = low ? -1.0 : 1.0;
-  auto at = [&](const Field2D<double>& F, int k) { return xside ? F(k, t) : F(t, k); };
-  const double rho = at(s.rho.f, b), e = at(s.e.f, b);
-  const double p_b = ctx.eos.pressure(rho, e), p_i = ctx.eos.pressure(at(s.rho.f, bi), at(s.e.f, bi));
-  double p_face = 1.5 * p_b - 0.5 * p_i;
-  if (!(p_face > 0.0)) p_face = p_b;
-  const int r = side == left ? t : side == right ? g.ny + t : side == bottom ? 2 * g.ny + t : 2 * g.ny + g.nx + t;
-  const Field2D<double> w = xside ? s.u.f : s.v.f;
-  return outflow_face_velocity(sign * at(w, fi), ctx.reference.velocity[r], p_face, ctx.reference.pressure[r], rho,
-                               ctx.eos.sound_speed(rho, e));
-}
 
 void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryContext& ctx);
 

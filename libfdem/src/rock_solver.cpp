@@ -4,7 +4,8 @@
 
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/error.hpp"
-#include "rock_kernels.hpp"
+#include "blastsim/fdem/rock_step_kernels.hpp"
+#include "rock_storage.hpp"
 
 #include <thrust/binary_search.h>
 #include <thrust/extrema.h>
@@ -37,13 +38,6 @@ void RockOptions::validate() const {
 
 namespace {
 
-template <class T>
-DeviceVector<T> upload(const std::vector<T>& host) {
-  DeviceVector<T> d;
-  copy_from_host(d, host);
-  return d;
-}
-
 double length(const std::array<double, 2>& a, const std::array<double, 2>& b) {
   return std::hypot(b[0] - a[0], b[1] - a[1]);
 }
@@ -51,7 +45,7 @@ double length(const std::array<double, 2>& a, const std::array<double, 2>& b) {
 }  // namespace
 
 RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, const RockOptions& options)
-    : material_(material), options_(options) {
+    : material_(material), options_(options), a_(std::make_unique<detail::RockArrays>()) {
   material_.validate();
   options_.validate();
   triangles_ = topo.triangle_count();
@@ -63,15 +57,15 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   const double p_joint_stiff = options_.joint_penalty_factor * E;
   const double p_contact_stiff = options_.contact ? options_.contact_penalty_factor * E : 0.0;
 
-  std::vector<double> x(nodes), y(nodes), mass(nodes), inv_f0(4 * triangles_), area0(triangles_), eta(triangles_);
+  std::vector<double> x(nodes), y(nodes), mass(nodes), area0(triangles_), eta(triangles_);
+  std::vector<Mat2> inv_f0(triangles_);
   double omega_max = 0;
   for (int t = 0; t < triangles_; ++t) {
     const auto& p0 = topo.node_positions[3 * t];
     const auto& p1 = topo.node_positions[3 * t + 1];
     const auto& p2 = topo.node_positions[3 * t + 2];
     const Mat2 F0 = edge_matrix({p0[0], p0[1]}, {p1[0], p1[1]}, {p2[0], p2[1]});
-    const Mat2 inv = F0.inverse();
-    inv_f0[4 * t] = inv.a, inv_f0[4 * t + 1] = inv.b, inv_f0[4 * t + 2] = inv.c, inv_f0[4 * t + 3] = inv.d;
+    inv_f0[t] = F0.inverse();
     const double A = 0.5 * F0.det();
     area0[t] = A;
     const double l01 = length(p0, p1), l12 = length(p1, p2), l20 = length(p2, p0);
@@ -92,79 +86,77 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   const double beta = options_.damping_ratio;
   stable_dt_ = 2.0 / omega_max * (std::sqrt(1 + beta * beta) - beta);
 
-  x_ = upload(x), y_ = upload(y), x0_ = upload(x), y0_ = upload(y), mass_ = upload(mass);
-  vx_.assign(nodes, 0.0), vy_.assign(nodes, 0.0);
-  f_tri_x_.assign(nodes, 0.0), f_tri_y_.assign(nodes, 0.0), f_con_x_.assign(nodes, 0.0), f_con_y_.assign(nodes, 0.0);
-  f_pres_x_.assign(nodes, 0.0), f_pres_y_.assign(nodes, 0.0);
-  constraint_.assign(nodes, 0), v_prescribed_.assign(2 * nodes, 0.0), work_.assign(kWorkKinds * nodes, 0.0);
-  support_.assign(2 * nodes, 0.0);
-  inv_f0_ = upload(inv_f0), area0_ = upload(area0), eta_ = upload(eta);
-  stress_.assign(3 * triangles_, 0.0), dissipation_.assign(2 * triangles_, 0.0);
+  detail::RockArrays& a = *a_;
+  copy_from_host(a.node_params.x0, x), copy_from_host(a.node_params.y0, y), copy_from_host(a.node_params.mass, mass);
+  copy_from_host(a.triangle_params.inv_f0, inv_f0), copy_from_host(a.triangle_params.area0, area0);
+  copy_from_host(a.triangle_params.eta, eta);
+  a.node_loads.constraint.assign(nodes, 0), a.node_loads.v_prescribed.assign(nodes, Vec2{0.0, 0.0});
+  copy_from_host(a.nodes.x, x), copy_from_host(a.nodes.y, y);
+  a.nodes.vx.assign(nodes, 0.0), a.nodes.vy.assign(nodes, 0.0);
+  for (DeviceVector<double>* f : {&a.forces.triangle_x, &a.forces.triangle_y, &a.forces.contact_x, &a.forces.contact_y,
+                                  &a.forces.pressure_x, &a.forces.pressure_y})
+    f->assign(nodes, 0.0);
+  a.ledger.work.assign(nodes, NodeWork{0, 0, 0, 0, 0}), a.ledger.support.assign(nodes, Vec2{0.0, 0.0});
+  a.triangles.stress.assign(triangles_, TriangleStress{0, 0, 0});
+  a.triangles.dissipation.assign(triangles_, TriangleDissipation{0, 0});
 
   std::vector<int> slot_neighbour(3 * triangles_, -1), slot_joint(3 * triangles_, -1);
   std::vector<std::uint8_t> exposed(3 * triangles_, 0);
   for (const BoundaryEdge& b : boundary_edges_) exposed[b.n0] = kEdgeBoundary;
-  std::vector<int> joint_nodes(4 * joints_);
-  std::vector<double> strength(8 * joints_);
+  std::vector<JointStrength> strength(joints_);
+  std::vector<double> joint_length(joints_);
   const double p_joint = options_.joint_penalty_factor * E;
   for (int j = 0; j < joints_; ++j) {
     const Joint& J = topo.joints[j];
     slot_neighbour[J.a0] = J.triangle_b, slot_joint[J.a0] = j;
     slot_neighbour[J.b0] = J.triangle_a, slot_joint[J.b0] = j;
-    joint_nodes[4 * j] = J.a0, joint_nodes[4 * j + 1] = J.a1, joint_nodes[4 * j + 2] = J.b0, joint_nodes[4 * j + 3] = J.b1;
     joint_nodes_host_.push_back({J.a0, J.a1, J.b0, J.b1});
     const double h = length(topo.node_positions[J.a0], topo.node_positions[J.a1]);
-    double* s = &strength[8 * j];
-    s[0] = material_.tensile_strength;
-    s[1] = material_.cohesion;
-    s[2] = std::tan(material_.friction_angle);
-    s[3] = 2 * h * material_.tensile_strength / p_joint;  // o_p
-    s[4] = 2 * h * material_.cohesion / p_joint;          // s_p
-    s[5] = softening_length(material_.fracture_energy_mode1, material_.tensile_strength, s[3]);  // o_t
-    s[6] = softening_length(material_.fracture_energy_mode2, material_.cohesion, s[4]);          // s_t
-    s[7] = h;
+    JointStrength& s = strength[j];
+    s.tensile_strength = material_.tensile_strength;
+    s.cohesion = material_.cohesion;
+    s.tan_friction = std::tan(material_.friction_angle);
+    s.peak_opening = 2 * h * material_.tensile_strength / p_joint;
+    s.peak_slip = 2 * h * material_.cohesion / p_joint;
+    s.opening_softening = softening_length(material_.fracture_energy_mode1, material_.tensile_strength, s.peak_opening);
+    s.slip_softening = softening_length(material_.fracture_energy_mode2, material_.cohesion, s.peak_slip);
+    joint_length[j] = h;
   }
-  slot_force_.assign(12 * triangles_, 0.0);
-  slot_neighbour_ = upload(slot_neighbour), slot_joint_ = upload(slot_joint);
-  edge_exposed_ = upload(exposed);
-  edge_pressure_.assign(3 * triangles_, 0.0);
-  joint_nodes_ = upload(joint_nodes), joint_strength_ = upload(strength);
-  joint_damage_.assign(3 * joints_, 0.0), joint_state_.assign(6 * joints_, 0.0), joint_traction_.assign(6 * joints_, 0.0);
-  joint_broken_.assign(joints_, 0);
-  sorted_triangles_.assign(triangles_, 0), cell_key_.assign(triangles_, 0);
-  cell_start_.assign(1, 0), cell_end_.assign(1, 0);
-  neighbour_offset_.assign(triangles_ + 1, 0), neighbour_list_.assign(1, 0);
+  copy_from_host(a.edge_params.neighbour, slot_neighbour), copy_from_host(a.edge_params.joint, slot_joint);
+  a.edges.joint_force.assign(3 * triangles_, SlotForce{{0.0, 0.0}, {0.0, 0.0}});
+  copy_from_host(a.edges.exposed, exposed);
+  a.edges.pressure.assign(3 * triangles_, 0.0);
+  copy_from_host(a.joint_params.nodes, joint_nodes_host_), copy_from_host(a.joint_params.strength, strength);
+  copy_from_host(a.joint_params.length, joint_length);
+  a.joints.damage.assign(joints_, JointPointDamage{{0, 0, 0}});
+  a.joints.separation.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
+  a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
+  a.joints.broken.assign(joints_, 0);
+  a.grid.sorted_triangles.assign(triangles_, 0), a.grid.cell_key.assign(triangles_, 0);
+  a.grid.cell_start.assign(1, 0), a.grid.cell_end.assign(1, 0);
+  a.grid.neighbour_offset.assign(triangles_ + 1, 0), a.grid.neighbour_list.assign(1, 0);
   if (options_.contact) rebuild_contact_grid();
 }
 
-detail::RockArrays RockSolver::arrays() {
-  return {device_ptr(x_), device_ptr(y_), device_ptr(vx_), device_ptr(vy_), device_ptr(x0_), device_ptr(y0_),
-          device_ptr(mass_), device_ptr(f_tri_x_), device_ptr(f_tri_y_), device_ptr(f_con_x_), device_ptr(f_con_y_),
-          device_ptr(f_pres_x_), device_ptr(f_pres_y_),
-          device_ptr(constraint_), device_ptr(v_prescribed_), device_ptr(work_), device_ptr(support_), device_ptr(inv_f0_),
-          device_ptr(area0_), device_ptr(eta_), device_ptr(stress_), device_ptr(dissipation_),
-          device_ptr(slot_force_), device_ptr(slot_neighbour_), device_ptr(slot_joint_), device_ptr(edge_exposed_),
-          device_ptr(edge_pressure_), device_ptr(joint_nodes_), device_ptr(joint_strength_),
-          device_ptr(joint_damage_), device_ptr(joint_state_), device_ptr(joint_traction_),
-          device_ptr(joint_broken_), device_ptr(cell_key_), device_ptr(sorted_triangles_), device_ptr(cell_start_),
-          device_ptr(cell_end_), device_ptr(neighbour_offset_), device_ptr(neighbour_list_)};
-}
+RockSolver::~RockSolver() = default;
+RockSolver::RockSolver(RockSolver&&) noexcept = default;
+RockSolver& RockSolver::operator=(RockSolver&&) noexcept = default;
 
 void RockSolver::rebuild_contact_grid() {
-  const detail::RockArrays r = arrays();
+  detail::RockArrays& a = *a_;
+  const NodeMotion<Access::read> m = a.nodes.read();
   const index_t n = node_count();
-  const double* xs = r.x;
-  const double* ys = r.y;
+  const double* xs = m.x;
+  const double* ys = m.y;
   const double xmax = reduce_max("fdem.grid.xmax", n, -1e300, [=] BLAST_HD(index_t k) { return xs[k]; });
   const double ymax = reduce_max("fdem.grid.ymax", n, -1e300, [=] BLAST_HD(index_t k) { return ys[k]; });
   const double xmin = -reduce_max("fdem.grid.xmin", n, -1e300, [=] BLAST_HD(index_t k) { return -xs[k]; });
   const double ymin = -reduce_max("fdem.grid.ymin", n, -1e300, [=] BLAST_HD(index_t k) { return -ys[k]; });
   // Largest distance from a triangle's centroid to its vertices.
   const double r_max = reduce_max("fdem.grid.rmax", triangles_, 0.0, [=] BLAST_HD(index_t t) {
-    const double cx = (xs[3 * t] + xs[3 * t + 1] + xs[3 * t + 2]) / 3.0;
-    const double cy = (ys[3 * t] + ys[3 * t + 1] + ys[3 * t + 2]) / 3.0;
+    const Vec2 c = triangle_centroid(m, static_cast<int>(t));
     double d = 0;
-    for (int k = 0; k < 3; ++k) d = fmax(d, hypot(xs[3 * t + k] - cx, ys[3 * t + k] - cy));
+    for (int k = 0; k < 3; ++k) d = fmax(d, hypot(xs[3 * t + k] - c.x, ys[3 * t + k] - c.y));
     return d;
   });
   if (!std::isfinite(xmin + xmax + ymin + ymax + r_max))
@@ -178,39 +170,37 @@ void RockSolver::rebuild_contact_grid() {
   grid_y0_ = ymin - cell_size_;
   grid_nx_ = static_cast<int>((xmax - grid_x0_) / cell_size_) + 2;
   grid_ny_ = static_cast<int>((ymax - grid_y0_) / cell_size_) + 2;
-  const double cs = cell_size_, gx0 = grid_x0_, gy0 = grid_y0_;
-  const int gnx = grid_nx_, gny = grid_ny_;
-  int* key = device_ptr(cell_key_);
-  int* sorted = device_ptr(sorted_triangles_);
+  const ContactGridShape shape{cell_size_, grid_x0_, grid_y0_, grid_nx_, grid_ny_};
+  detail::ContactGridArrays& g = a.grid;
+  int* key = device_ptr(g.cell_key);
+  int* sorted = device_ptr(g.sorted_triangles);
   for_each_index("fdem.grid.keys", triangles_, [=] BLAST_HD(index_t t) {
-    const double cx = (xs[3 * t] + xs[3 * t + 1] + xs[3 * t + 2]) / 3.0;
-    const double cy = (ys[3 * t] + ys[3 * t + 1] + ys[3 * t + 2]) / 3.0;
-    int i = static_cast<int>(floor((cx - gx0) / cs)), j = static_cast<int>(floor((cy - gy0) / cs));
-    i = i < 0 ? 0 : (i >= gnx ? gnx - 1 : i);
-    j = j < 0 ? 0 : (j >= gny ? gny - 1 : j);
-    key[t] = j * gnx + i;
+    const Vec2 c = triangle_centroid(m, static_cast<int>(t));
+    int i, j;
+    shape.cell_of(c.x, c.y, i, j);
+    key[t] = j * shape.nx + i;
     sorted[t] = static_cast<int>(t);
   });
   // Stable sort: triangles keep index order inside a cell, so the contact sums run in a fixed order.
-  thrust::stable_sort_by_key(thrust::device, cell_key_.begin(), cell_key_.end(), sorted_triangles_.begin());
-  const index_t cells = static_cast<index_t>(gnx) * gny;
-  cell_start_.resize(cells);
-  cell_end_.resize(cells);
-  thrust::lower_bound(thrust::device, cell_key_.begin(), cell_key_.end(), thrust::counting_iterator<int>(0),
-                      thrust::counting_iterator<int>(static_cast<int>(cells)), cell_start_.begin());
-  thrust::upper_bound(thrust::device, cell_key_.begin(), cell_key_.end(), thrust::counting_iterator<int>(0),
-                      thrust::counting_iterator<int>(static_cast<int>(cells)), cell_end_.begin());
+  thrust::stable_sort_by_key(thrust::device, g.cell_key.begin(), g.cell_key.end(), g.sorted_triangles.begin());
+  const index_t cells = static_cast<index_t>(shape.nx) * shape.ny;
+  g.cell_start.resize(cells);
+  g.cell_end.resize(cells);
+  thrust::lower_bound(thrust::device, g.cell_key.begin(), g.cell_key.end(), thrust::counting_iterator<int>(0),
+                      thrust::counting_iterator<int>(static_cast<int>(cells)), g.cell_start.begin());
+  thrust::upper_bound(thrust::device, g.cell_key.begin(), g.cell_key.end(), thrust::counting_iterator<int>(0),
+                      thrust::counting_iterator<int>(static_cast<int>(cells)), g.cell_end.begin());
   // Candidate lists (CSR): count, scan, fill; each triangle's list in a fixed order.
-  detail::RockArrays r2 = arrays();
-  neighbour_offset_.resize(triangles_ + 1);
-  detail::NeighbourSearchKernel search{r2, buffer_, cs, gx0, gy0, gnx, gny, device_ptr(neighbour_offset_), nullptr};
+  g.neighbour_offset.resize(triangles_ + 1);
+  NeighbourSearchKernel search{m,       device_ptr(g.sorted_triangles), device_ptr(g.cell_start), device_ptr(g.cell_end),
+                               nullptr, shape,   buffer_, device_ptr(g.neighbour_offset), nullptr};
   for_each_index("fdem.contact.count", triangles_, search);
-  thrust::exclusive_scan(thrust::device, neighbour_offset_.begin(), neighbour_offset_.end(), neighbour_offset_.begin());
-  const int total = neighbour_offset_.back();
-  neighbour_list_.resize(std::max(total, 1));
-  r2 = arrays();
-  search.r = r2;
-  search.list = device_ptr(neighbour_list_);
+  thrust::exclusive_scan(thrust::device, g.neighbour_offset.begin(), g.neighbour_offset.end(), g.neighbour_offset.begin());
+  const int total = g.neighbour_offset.back();
+  g.neighbour_list.resize(std::max(total, 1));
+  search.offset = device_ptr(g.neighbour_offset);
+  search.count = nullptr;
+  search.list = device_ptr(g.neighbour_list);
   for_each_index("fdem.contact.fill", triangles_, search);
   build_contact_pairs();
   travel_since_build_ = 0;
@@ -218,23 +208,25 @@ void RockSolver::rebuild_contact_grid() {
 }
 
 void RockSolver::build_contact_pairs() {
-  const int* offset = device_ptr(neighbour_offset_);
-  const int* list = device_ptr(neighbour_list_);
-  pair_offset_.resize(triangles_ + 1);
-  pair_offset_[triangles_] = 0;
-  for_each_index("fdem.grid.pair_count", triangles_, detail::PairCountKernel{offset, list, device_ptr(pair_offset_)});
-  thrust::exclusive_scan(thrust::device, pair_offset_.begin(), pair_offset_.end(), pair_offset_.begin());
-  const int pairs = pair_offset_.back();
+  detail::RockArrays& a = *a_;
+  const int* offset = device_ptr(a.grid.neighbour_offset);
+  const int* list = device_ptr(a.grid.neighbour_list);
+  detail::ContactPairsArrays& p = a.pairs;
+  p.pair_offset.resize(triangles_ + 1);
+  p.pair_offset[triangles_] = 0;
+  for_each_index("fdem.grid.pair_count", triangles_, PairCountKernel{offset, list, device_ptr(p.pair_offset)});
+  thrust::exclusive_scan(thrust::device, p.pair_offset.begin(), p.pair_offset.end(), p.pair_offset.begin());
+  const int pairs = p.pair_offset.back();
   pairs_ = pairs;
-  const index_t slots = neighbour_list_.size();
-  slot_pair_.resize(slots);
-  pair_ij_.resize(2 * static_cast<index_t>(std::max(pairs, 1)));
-  pair_touch_.resize(std::max(pairs, 1));
-  pair_load_.resize(13 * static_cast<index_t>(std::max(pairs, 1)));
+  const index_t slots = a.grid.neighbour_list.size();
+  p.slot_pair.resize(slots);
+  p.pair.resize(std::max(pairs, 1));
+  p.touch.resize(std::max(pairs, 1));
+  p.load.resize(std::max(pairs, 1));
   for_each_index("fdem.grid.pair_index", triangles_,
-                 detail::PairIndexKernel{offset, list, device_ptr(pair_offset_), device_ptr(slot_pair_), device_ptr(pair_ij_)});
-  const int used = neighbour_offset_.back();  // the list holds at least one entry even when empty
-  const double unmatched = reduce_sum("fdem.grid.pair_check", used, 0.0, detail::UnmatchedSlot{device_ptr(slot_pair_)});
+                 PairIndexKernel{offset, list, device_ptr(p.pair_offset), device_ptr(p.slot_pair), device_ptr(p.pair)});
+  const int used = a.grid.neighbour_offset.back();  // the list holds at least one entry even when empty
+  const double unmatched = reduce_sum("fdem.grid.pair_check", used, 0.0, UnmatchedSlot{device_ptr(p.slot_pair)});
   if (unmatched > 0)
     throw std::logic_error("contact broad phase: " + std::to_string(static_cast<long>(unmatched)) +
                            " candidate slots have no partner slot (the candidate lists must be symmetric)");
@@ -252,18 +244,18 @@ void RockSolver::step(double dt) {
   joint_forces();
   contact_forces(dt);
   update_nodes(dt);
-  const detail::RockArrays r = arrays();
   time_ += dt;
   ++steps_;
   // Largest speed (infinite if any is not finite): drives the contact rebuild and catches instability.
-  const double* vx = r.vx;
-  const double* vy = r.vy;
+  const NodeMotion<Access::read> m = a_->nodes.read();
+  const double* vx = m.vx;
+  const double* vy = m.vy;
   const double v_max = reduce_max("fdem.vmax", node_count(), 0.0, [=] BLAST_HD(index_t k) {
     const double s = vx[k] * vx[k] + vy[k] * vy[k];
     return s == s && s < 1e300 ? sqrt(s) : 1e308;
   });
   if (!(v_max < 1e300)) {
-    const std::vector<double> hx = to_host(vx_), hy = to_host(vy_);
+    const std::vector<double> hx = to_host(a_->nodes.vx), hy = to_host(a_->nodes.vy);
     size_t bad = 0;
     while (bad < hx.size() && std::isfinite(hx[bad] * hx[bad] + hy[bad] * hy[bad])) ++bad;
     throw InstabilityError("rock velocity not finite at step " + std::to_string(steps_) + " (t = " +
@@ -275,55 +267,69 @@ void RockSolver::step(double dt) {
 
 // Munjiza 2004 ch. 2: constant-strain triangles.
 void RockSolver::triangle_forces(double dt) {
+  detail::RockArrays& a = *a_;
   for_each_index("fdem.triangles", triangles_,
-                 detail::TriangleForceKernel{arrays(), material_.lame_lambda(), material_.shear_modulus(), pressure_scale_, dt});
+                 TriangleForceKernel{a.nodes.read(), a.triangle_params.view(), a.edges.read(), a.forces.view(),
+                                     a.triangles.view(), material_.lame_lambda(), material_.shear_modulus(),
+                                     pressure_scale_, dt});
 }
 
 // Munjiza 2004 ch. 7: cohesive joints.
 void RockSolver::joint_forces() {
-  if (joints_ > 0) for_each_index("fdem.joints", joints_, detail::JointForceKernel{arrays()});
+  detail::RockArrays& a = *a_;
+  if (joints_ > 0)
+    for_each_index("fdem.joints", joints_,
+                   JointForceKernel{a.nodes.read(), a.joint_params.view(), a.joints.view(), a.edges.view()});
 }
 
 // Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction. Each pair once (one thread a
 // pair), then each triangle gathers its side of its pairs.
 void RockSolver::contact_forces(double dt) {
   if (!options_.contact) return;
+  detail::RockArrays& a = *a_;
   const double penalty = options_.contact_penalty_factor * material_.youngs_modulus;
-  const detail::ContactPairKernel pair{arrays(), device_ptr(pair_ij_), device_ptr(pair_touch_), device_ptr(pair_load_),
-                                       penalty, material_.contact_friction, dt};
+  const ContactPairKernel pair{a.nodes.read(),       a.node_params.view(),       a.edge_params.view(),
+                               device_ptr(a.joints.broken), device_ptr(a.pairs.pair), device_ptr(a.pairs.touch),
+                               device_ptr(a.pairs.load),    penalty,                    material_.contact_friction,
+                               dt};
 #if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
   for_each_index("fdem.contact.pairs", pairs_, pair);  // in pair order: neighbouring threads read neighbouring pairs
 #else
   // CPU: the static OpenMP schedule gives each thread one contiguous run of pairs, and the pairs that touch
   // (numbered with their triangles: around the hole and the cracks) bunch up in a few runs. Visiting them in
   // interleaved blocks spreads them over the threads; a pair's result does not depend on when it runs.
-  const detail::InterleavedPairs interleaved{pair, pairs_, detail::InterleavedPairs::block_length_for(pairs_)};
+  const InterleavedPairs interleaved{pair, pairs_, InterleavedPairs::block_length_for(pairs_)};
   for_each_index("fdem.contact.pairs", interleaved.launch_size(), interleaved);
 #endif
   for_each_index("fdem.contact.gather", triangles_,
-                 detail::ContactGatherKernel{arrays(), device_ptr(slot_pair_), device_ptr(pair_ij_),
-                                             device_ptr(pair_touch_), device_ptr(pair_load_), dt});
+                 ContactGatherKernel{device_ptr(a.grid.neighbour_offset), a.pairs.read(), a.forces.view(),
+                                     a.triangles.view(), dt});
 }
 
-// Symplectic Euler (fdem.md): gather the node's forces, integrate.
+// Symplectic Euler (docs/fdem-solver.md): gather the node's forces, integrate.
 void RockSolver::update_nodes(double dt) {
+  detail::RockArrays& a = *a_;
   for_each_index("fdem.nodes", node_count(),
-                 detail::NodeUpdateKernel{arrays(), options_.gravity[0], options_.gravity[1], dt, dt_prev_});
+                 NodeUpdateKernel{a.node_params.view(), a.node_loads.view(), a.forces.read(),
+                                  device_ptr(a.edges.joint_force), a.nodes.view(), a.ledger.view(),
+                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_});
   dt_prev_ = dt;
 }
 
 void RockSolver::prescribe_velocity(const std::vector<int>& nodes, bool along_x, bool along_y, double vx, double vy) {
-  std::vector<std::uint8_t> c = to_host(constraint_);
-  std::vector<double> vp = to_host(v_prescribed_), hvx = to_host(vx_), hvy = to_host(vy_);
+  detail::RockArrays& a = *a_;
+  std::vector<std::uint8_t> c = to_host(a.node_loads.constraint);
+  std::vector<Vec2> vp = to_host(a.node_loads.v_prescribed);
+  std::vector<double> hvx = to_host(a.nodes.vx), hvy = to_host(a.nodes.vy);
   for (int n : nodes) {
     if (n < 0 || n >= node_count()) throw InputError("prescribed node " + std::to_string(n) + " does not exist");
-    if (along_x) c[n] |= 1, vp[2 * n] = vx, hvx[n] = vx;
-    if (along_y) c[n] |= 2, vp[2 * n + 1] = vy, hvy[n] = vy;
+    if (along_x) c[n] |= 1, vp[n].x = vx, hvx[n] = vx;
+    if (along_y) c[n] |= 2, vp[n].y = vy, hvy[n] = vy;
   }
-  copy_from_host(constraint_, c);
-  copy_from_host(v_prescribed_, vp);
-  copy_from_host(vx_, hvx);
-  copy_from_host(vy_, hvy);
+  copy_from_host(a.node_loads.constraint, c);
+  copy_from_host(a.node_loads.v_prescribed, vp);
+  copy_from_host(a.nodes.vx, hvx);
+  copy_from_host(a.nodes.vy, hvy);
 }
 
 void RockSolver::set_velocities(const std::vector<double>& vxy) {
@@ -331,21 +337,21 @@ void RockSolver::set_velocities(const std::vector<double>& vxy) {
     throw InputError("set_velocities needs 2 values per node (" + std::to_string(2 * node_count()) + ")");
   std::vector<double> hx(node_count()), hy(node_count());
   for (int n = 0; n < node_count(); ++n) hx[n] = vxy[2 * n], hy[n] = vxy[2 * n + 1];
-  copy_from_host(vx_, hx);
-  copy_from_host(vy_, hy);
+  copy_from_host(a_->nodes.vx, hx);
+  copy_from_host(a_->nodes.vy, hy);
 }
 
 void RockSolver::set_edge_pressure(const std::vector<int>& slots, double pressure) {
-  std::vector<double> p = to_host(edge_pressure_);
+  std::vector<double> p = to_host(a_->edges.pressure);
   for (int s : slots) {
     if (s < 0 || s >= 3 * triangles_) throw InputError("edge slot " + std::to_string(s) + " does not exist");
     p[s] = pressure;
   }
-  copy_from_host(edge_pressure_, p);
+  copy_from_host(a_->edges.pressure, p);
 }
 
 std::vector<int> RockSolver::joints_on_segment(double xa, double ya, double xb, double yb, double tolerance) const {
-  const std::vector<double> px = to_host(x0_), py = to_host(y0_);
+  const std::vector<double> px = to_host(a_->node_params.x0), py = to_host(a_->node_params.y0);
   const double lx = xb - xa, ly = yb - ya, len2 = lx * lx + ly * ly;
   auto on_segment = [&](int n) {  // distance from the segment within tolerance
     const double s = len2 > 0 ? std::clamp(((px[n] - xa) * lx + (py[n] - ya) * ly) / len2, 0.0, 1.0) : 0.0;
@@ -353,72 +359,75 @@ std::vector<int> RockSolver::joints_on_segment(double xa, double ya, double xb, 
   };
   std::vector<int> out;
   for (int j = 0; j < joints_; ++j) {
-    const std::array<int, 4>& n = joint_nodes_host_[j];
-    if (on_segment(n[0]) && on_segment(n[1])) out.push_back(j);
+    const JointNodes& n = joint_nodes_host_[j];
+    if (on_segment(n.a0) && on_segment(n.a1)) out.push_back(j);
   }
   return out;
 }
 
 void RockSolver::break_joints(const std::vector<int>& joints) {
-  std::vector<std::uint8_t> broken = to_host(joint_broken_), exposed = to_host(edge_exposed_);
-  std::vector<double> damage = to_host(joint_damage_);
+  detail::RockArrays& a = *a_;
+  std::vector<std::uint8_t> broken = to_host(a.joints.broken), exposed = to_host(a.edges.exposed);
+  std::vector<JointPointDamage> damage = to_host(a.joints.damage);
   for (int j : joints) {
     if (j < 0 || j >= joints_) throw InputError("joint " + std::to_string(j) + " does not exist");
     broken[j] = 1;
-    for (int q = 0; q < 3; ++q) damage[3 * j + q] = 1.0;
-    exposed[joint_nodes_host_[j][0]] = kEdgeCrackFace;  // face A's slot (its first node)
-    exposed[joint_nodes_host_[j][2]] = kEdgeCrackFace;  // face B's slot
+    for (int q = 0; q < kJointPoints; ++q) damage[j].point[q] = 1.0;
+    exposed[joint_nodes_host_[j].a0] = kEdgeCrackFace;  // face A's slot (its first node)
+    exposed[joint_nodes_host_[j].b0] = kEdgeCrackFace;  // face B's slot
   }
-  copy_from_host(joint_broken_, broken);
-  copy_from_host(edge_exposed_, exposed);
-  copy_from_host(joint_damage_, damage);
+  copy_from_host(a.joints.broken, broken);
+  copy_from_host(a.edges.exposed, exposed);
+  copy_from_host(a.joints.damage, damage);
 }
 
 RockView RockSolver::view() {
-  return {device_ptr(x_), device_ptr(y_), device_ptr(vx_), device_ptr(vy_), device_ptr(edge_exposed_),
-          device_ptr(edge_pressure_), triangles_};
+  detail::RockArrays& a = *a_;
+  return {device_ptr(a.nodes.x),      device_ptr(a.nodes.y),        device_ptr(a.nodes.vx), device_ptr(a.nodes.vy),
+          device_ptr(a.edges.exposed), device_ptr(a.edges.pressure), triangles_};
 }
 
-RockEnergies RockSolver::energies() {
-  const detail::RockArrays r = arrays();
+std::vector<double> RockSolver::edge_pressures() const { return to_host(a_->edges.pressure); }
+std::vector<std::uint8_t> RockSolver::edge_exposure() const { return to_host(a_->edges.exposed); }
+
+RockEnergies RockSolver::energies() const {
+  const detail::RockArrays& a = *a_;
+  const NodeMotion<Access::read> m = a.nodes.read();
+  const NodeParams np = a.node_params.view();
+  const TriangleParams tp = a.triangle_params.view();
+  const NodeWork* work = device_ptr(a.ledger.work);
+  const TriangleDissipation* dissipation = device_ptr(a.triangles.dissipation);
+  const JointParams jp = a.joint_params.view();
+  const JointState<Access::read> js = a.joints.read();
   RockEnergies e;
   e.kinetic = reduce_sum("fdem.energy.kinetic", node_count(), 0.0, [=] BLAST_HD(index_t n) {
-    return 0.5 * r.mass[n] * (r.vx[n] * r.vx[n] + r.vy[n] * r.vy[n]);
+    return 0.5 * np.mass[n] * (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n]);
   });
   const double lambda = material_.lame_lambda(), mu = material_.shear_modulus();
   e.strain = reduce_sum("fdem.energy.strain", triangles_, 0.0, [=] BLAST_HD(index_t t) {
     Vec2 p[3];
-    detail::triangle_nodes(r, static_cast<int>(t), p);
-    const Mat2 inv{r.inv_f0[4 * t], r.inv_f0[4 * t + 1], r.inv_f0[4 * t + 2], r.inv_f0[4 * t + 3]};
-    return r.area0[t] * triangle_strain_energy_density(inv, edge_matrix(p[0], p[1], p[2]), lambda, mu);
+    m.triangle(static_cast<int>(t), p);
+    return tp.area0[t] * triangle_strain_energy_density(tp.inv_f0[t], edge_matrix(p[0], p[1], p[2]), lambda, mu);
   });
-  auto work_sum = [&](int c) {
-    return reduce_sum("fdem.energy.work", node_count(), 0.0, [=] BLAST_HD(index_t n) { return r.work[kWorkKinds * n + c]; });
+  auto work_sum = [&](double NodeWork::*kind) {
+    return reduce_sum("fdem.energy.work", node_count(), 0.0, [=] BLAST_HD(index_t n) { return work[n].*kind; });
   };
-  e.pressure_work = work_sum(0);
-  e.external_work = e.pressure_work + work_sum(3) + work_sum(4);
-  e.joint_work = work_sum(1);
-  e.contact_work = work_sum(2);
+  e.pressure_work = work_sum(&NodeWork::pressure);
+  e.external_work = e.pressure_work + work_sum(&NodeWork::support) + work_sum(&NodeWork::gravity);
+  e.joint_work = work_sum(&NodeWork::joint);
+  e.contact_work = work_sum(&NodeWork::contact);
   e.damping_dissipated =
-      reduce_sum("fdem.energy.damping", triangles_, 0.0, [=] BLAST_HD(index_t t) { return r.dissipation[2 * t]; });
+      reduce_sum("fdem.energy.damping", triangles_, 0.0, [=] BLAST_HD(index_t t) { return dissipation[t].damping; });
   e.friction_dissipated =
-      reduce_sum("fdem.energy.friction", triangles_, 0.0, [=] BLAST_HD(index_t t) { return r.dissipation[2 * t + 1]; });
-  e.joint_stored = reduce_sum("fdem.energy.joints", joints_, 0.0, [=] BLAST_HD(index_t j) {
-    if (r.joint_broken[j]) return 0.0;
-    const double h = r.joint_strength[8 * j + 7];
-    const double w[3] = {h / 6.0, 4.0 * h / 6.0, h / 6.0};
-    double sum = 0;
-    for (int q = 0; q < 3; ++q)  // secant estimate: half traction times separation
-      sum += 0.5 * w[q] * (r.joint_traction[6 * j + 2 * q] * r.joint_state[6 * j + 2 * q] +
-                           r.joint_traction[6 * j + 2 * q + 1] * r.joint_state[6 * j + 2 * q + 1]);
-    return sum;
-  });
+      reduce_sum("fdem.energy.friction", triangles_, 0.0, [=] BLAST_HD(index_t t) { return dissipation[t].friction; });
+  e.joint_stored = reduce_sum("fdem.energy.joints", joints_, 0.0,
+                              [=] BLAST_HD(index_t j) { return joint_stored_energy(jp, js, static_cast<int>(j)); });
   e.fracture_dissipated = e.joint_work - e.joint_stored;
   e.broken_joints = static_cast<int>(reduce_sum("fdem.broken", joints_, 0.0, [=] BLAST_HD(index_t j) {
-    return r.joint_broken[j] ? 1.0 : 0.0;
+    return js.broken[j] ? 1.0 : 0.0;
   }));
   e.crack_length = reduce_sum("fdem.crack_length", joints_, 0.0, [=] BLAST_HD(index_t j) {
-    return r.joint_broken[j] ? r.joint_strength[8 * j + 7] : 0.0;
+    return js.broken[j] ? jp.length[j] : 0.0;
   });
   return e;
 }
@@ -428,52 +437,44 @@ std::array<double, 2> RockSolver::support_reaction(const std::vector<int>& nodes
 }
 
 std::vector<std::array<double, 2>> RockSolver::support_reactions(const std::vector<std::vector<int>>& groups) const {
-  const std::vector<double> f = to_host(support_);
+  const std::vector<Vec2> f = to_host(a_->ledger.support);
   std::vector<std::array<double, 2>> sums(groups.size(), {0.0, 0.0});
   for (size_t g = 0; g < groups.size(); ++g)
-    for (int n : groups[g]) sums[g][0] += f[2 * n], sums[g][1] += f[2 * n + 1];
+    for (int n : groups[g]) sums[g][0] += f[n].x, sums[g][1] += f[n].y;
   return sums;
 }
 
-double RockSolver::contact_force_norm() {
-  const double* fx = device_ptr(f_con_x_);
-  const double* fy = device_ptr(f_con_y_);
+double RockSolver::contact_force_norm() const {
+  const double* fx = device_ptr(a_->forces.contact_x);
+  const double* fy = device_ptr(a_->forces.contact_y);
   return reduce_sum("fdem.contact_norm", node_count(), 0.0,
                     [=] BLAST_HD(index_t n) { return sqrt(fx[n] * fx[n] + fy[n] * fy[n]); });
 }
 
 RockSnapshot RockSolver::snapshot() const {
+  const detail::RockArrays& a = *a_;
   RockSnapshot s;
-  s.x = to_host(x_), s.y = to_host(y_), s.vx = to_host(vx_), s.vy = to_host(vy_);
-  s.x0 = to_host(x0_), s.y0 = to_host(y0_);
-  s.stress = to_host(stress_);
-  const std::vector<double> d = to_host(joint_damage_);
+  s.x = to_host(a.nodes.x), s.y = to_host(a.nodes.y), s.vx = to_host(a.nodes.vx), s.vy = to_host(a.nodes.vy);
+  s.x0 = to_host(a.node_params.x0), s.y0 = to_host(a.node_params.y0);
+  const std::vector<TriangleStress> stress = to_host(a.triangles.stress);
+  s.stress.resize(3 * stress.size());
+  for (size_t t = 0; t < stress.size(); ++t)
+    s.stress[3 * t] = stress[t].xx, s.stress[3 * t + 1] = stress[t].xy, s.stress[3 * t + 2] = stress[t].yy;
+  const std::vector<JointPointDamage> d = to_host(a.joints.damage);
   s.joint_damage.resize(joints_);
-  for (int j = 0; j < joints_; ++j) s.joint_damage[j] = std::max({d[3 * j], d[3 * j + 1], d[3 * j + 2]});
-  s.joint_broken = to_host(joint_broken_);
-  s.joint_nodes = joint_nodes_host_;
+  for (int j = 0; j < joints_; ++j) s.joint_damage[j] = std::max({d[j].point[0], d[j].point[1], d[j].point[2]});
+  s.joint_broken = to_host(a.joints.broken);
+  s.joint_nodes.resize(joints_);
+  for (int j = 0; j < joints_; ++j) {
+    const JointNodes& n = joint_nodes_host_[j];
+    s.joint_nodes[j] = {n.a0, n.a1, n.b0, n.b1};
+  }
   return s;
-}
-
-template <class Self, class Fn>
-void RockSolver::for_each_checkpoint_array(Self& r, Fn&& fn) {
-  fn("rock.x", r.x_), fn("rock.y", r.y_), fn("rock.vx", r.vx_), fn("rock.vy", r.vy_), fn("rock.x0", r.x0_), fn("rock.y0", r.y0_);
-  fn("rock.mass", r.mass_), fn("rock.f_tri_x", r.f_tri_x_), fn("rock.f_tri_y", r.f_tri_y_), fn("rock.f_con_x", r.f_con_x_);
-  fn("rock.f_con_y", r.f_con_y_), fn("rock.f_pres_x", r.f_pres_x_), fn("rock.f_pres_y", r.f_pres_y_);
-  fn("rock.constraint", r.constraint_), fn("rock.v_prescribed", r.v_prescribed_), fn("rock.work", r.work_);
-  fn("rock.support", r.support_), fn("rock.inv_f0", r.inv_f0_), fn("rock.area0", r.area0_), fn("rock.eta", r.eta_);
-  fn("rock.stress", r.stress_), fn("rock.dissipation", r.dissipation_), fn("rock.slot_force", r.slot_force_);
-  fn("rock.slot_neighbour", r.slot_neighbour_), fn("rock.slot_joint", r.slot_joint_), fn("rock.edge_exposed", r.edge_exposed_);
-  fn("rock.edge_pressure", r.edge_pressure_), fn("rock.joint_nodes", r.joint_nodes_), fn("rock.joint_strength", r.joint_strength_);
-  fn("rock.joint_damage", r.joint_damage_), fn("rock.joint_state", r.joint_state_), fn("rock.joint_traction", r.joint_traction_);
-  fn("rock.joint_broken", r.joint_broken_), fn("rock.cell_key", r.cell_key_), fn("rock.sorted_triangles", r.sorted_triangles_);
-  fn("rock.cell_start", r.cell_start_), fn("rock.cell_end", r.cell_end_), fn("rock.neighbour_offset", r.neighbour_offset_);
-  fn("rock.neighbour_list", r.neighbour_list_);
 }
 
 void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.counts", std::array<int, 2>{triangles_, joints_});
-  for_each_checkpoint_array(*this, [&](const std::string& name, const auto& v) { w.array(name, v); });
+  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v) { w.array(name, v); });
   w.value("rock.scalars", std::array<double, 9>{time_, pressure_scale_, dt_prev_, cell_size_, grid_x0_, grid_y0_, buffer_,
                                                 travel_since_build_, stable_dt_});
   w.value("rock.integers", std::array<long, 4>{steps_, rebuilds_, grid_nx_, grid_ny_});
@@ -485,7 +486,7 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
     throw InputError("checkpoint " + r.path() + ": its rock has " + std::to_string(counts[0]) + " triangles and " +
                      std::to_string(counts[1]) + " joints, this case's mesh " + std::to_string(triangles_) + " and " +
                      std::to_string(joints_));
-  for_each_checkpoint_array(*this, [&](const std::string& name, auto& v) { r.array(name, v); });
+  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, auto& v) { r.array(name, v); });
   const std::array<double, 9> d = r.value<std::array<double, 9>>("rock.scalars");
   time_ = d[0], pressure_scale_ = d[1], dt_prev_ = d[2], cell_size_ = d[3], grid_x0_ = d[4], grid_y0_ = d[5];
   buffer_ = d[6], travel_since_build_ = d[7], stable_dt_ = d[8];

@@ -2,7 +2,8 @@
 //! \brief GasRockCoupler: rock-to-gas masks and velocities, gas-to-rock edge pressures, the coupled step.
 #include "blastsim/ibm/coupler.hpp"
 
-#include "blastsim/ibm/coupling_kernels.hpp"
+#include "blastsim/ibm/coupling_step_kernels.hpp"
+#include "blastsim/core/backend.hpp"
 #include "blastsim/core/checkpoint.hpp"
 
 #include <thrust/fill.h>
@@ -13,244 +14,48 @@
 
 namespace blastsim::ibm {
 
-namespace {
 
-BLAST_HD inline int imax(int a, int b) { return a > b ? a : b; }
-BLAST_HD inline int imin(int a, int b) { return a < b ? a : b; }
-
-//! A pair of sums for device reductions (forces).
-struct Vec2Sum {
-  double x, y;
-  BLAST_HD Vec2Sum operator+(const Vec2Sum& o) const { return {x + o.x, y + o.y}; }
+namespace detail {
+//! The coupler's device arrays.
+struct CouplerArrays {
+  DeviceVector<int> u_owner, v_owner;  // padded shape: triangle covering each x-face / y-face point, -1: none
+  DeviceVector<std::uint8_t> new_active, changed;  // padded shape: mask being built, cells whose gas moved
+  DeviceVector<double> rho_next, e_next;           // padded shape: density and specific energy after the move
+  DeviceVector<double> ledger;  // 4 per cell: covered, uncovered, mass created [kg/m], energy created [J/m]
 };
-
-//! Marks the x-face (u) and y-face (v) points inside each triangle (docs/ibm.md "Rock -> gas": bounding-box
-//! rasterisation), keeping the highest triangle index per point.
-struct CoverKernel {
-  fdem::RockView rock;
-  cip::GasGrid g;
-  Field2D<int> u_owner, v_owner;
-  BLAST_HD void operator()(index_t ti) const {
-    const int t = static_cast<int>(ti);
-    double x[3], y[3];
-    for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
-    const double x0 = min_of(x[0], min_of(x[1], x[2])), x1 = max_of(x[0], max_of(x[1], x[2]));
-    const double y0 = min_of(y[0], min_of(y[1], y[2])), y1 = max_of(y[0], max_of(y[1], y[2]));
-    for (int face = 0; face < 2; ++face) {
-      // x-faces sit at (x_min + i dx, y_min + (j + 1/2) dy), y-faces at (x_min + (i + 1/2) dx, y_min + j dy).
-      const double ox = face == 0 ? 0.0 : 0.5, oy = face == 0 ? 0.5 : 0.0;
-      const int ni = face == 0 ? g.nx + 1 : g.nx, nj = face == 0 ? g.ny : g.ny + 1;
-      const int i0 = imax(0, static_cast<int>(ceil((x0 - g.x_min) / g.dx - ox)));
-      const int i1 = imin(ni - 1, static_cast<int>(floor((x1 - g.x_min) / g.dx - ox)));
-      const int j0 = imax(0, static_cast<int>(ceil((y0 - g.y_min) / g.dy - oy)));
-      const int j1 = imin(nj - 1, static_cast<int>(floor((y1 - g.y_min) / g.dy - oy)));
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) {
-          double w[3];
-          if (barycentric(x, y, g.x_min + (i + ox) * g.dx, g.y_min + (j + oy) * g.dy, w) && inside(w))
-            atomic_max(&(face == 0 ? u_owner : v_owner)(i, j), t);
-        }
-    }
-  }
-};
-
-//! Imposed velocity of each face point from its covering triangle's nodes (linear shape functions).
-struct FaceVelocityKernel {
-  fdem::RockView rock;
-  cip::GasGrid g;
-  int face;  // 0: x-faces (u), 1: y-faces (v)
-  Field2D<const int> owner;
-  Field2D<std::uint8_t> prescribed;
-  Field2D<double> imposed;
-  BLAST_HD void operator()(int i, int j) const {
-    const int t = owner(i, j);
-    prescribed(i, j) = t >= 0;
-    if (t < 0) return;
-    double x[3], y[3], w[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
-    for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
-    const double px = g.x_min + (i + (face == 0 ? 0.0 : 0.5)) * g.dx;
-    const double py = g.y_min + (j + (face == 0 ? 0.5 : 0.0)) * g.dy;
-    barycentric(x, y, px, py, w);
-    const double* vel = face == 0 ? rock.vx : rock.vy;
-    imposed(i, j) = w[0] * vel[3 * t] + w[1] * vel[3 * t + 1] + w[2] * vel[3 * t + 2];
-  }
-};
-
-//! A cell is inactive when its four face points are in rock (docs/ibm.md "Rock -> gas"): the new mask.
-struct NewMaskKernel {
-  Field2D<const int> u_owner, v_owner;
-  Field2D<std::uint8_t> new_active;
-  BLAST_HD void operator()(int i, int j) const {
-    const bool covered = u_owner(i, j) >= 0 && u_owner(i + 1, j) >= 0 && v_owner(i, j) >= 0 && v_owner(i, j + 1) >= 0;
-    new_active(i, j) = covered ? 0 : 1;
-  }
-};
-
-//! Moves gas between cells that change state (docs/coupling.md "Cells that change state"). A covered cell
-//! gives its mass and energy (internal, and the kinetic energy of its faces: handed_energy()) in equal shares
-//! to its stable edge neighbours (active before and after), or, with none (two cut cells that shared their only open face), to the stable cells of its 3 x 3
-//! block; it then holds the ambient state. An uncovered cell starts from the ambient state at rest: the gas
-//! of its neighbours flows in through the solver (splitting a neighbour's gas instead made near-vacuum
-//! chains along opening cracks, and negative densities when the hole gas arrived). Every cell computes its
-//! own new value from the old ones (a gather: no atomics, order-independent). The ledger counts the
-//! transitions and the mass and energy they create: the ambient gas of uncovered cells, minus the gas of a
-//! covered cell with no stable cell in its block. `reset` (the first call): covered cells take the ambient
-//! state, nothing moves and nothing is counted.
-struct TransitionKernel {
-  Field2D<const std::uint8_t> old_active, new_active;
-  Field2D<const double> rho, e, u, v;
-  Field2D<double> rho_next, e_next;
-  Field2D<std::uint8_t> changed;
-  double* ledger;  // 4 per cell (i + nx j)
-  int nx, ny;
-  double cell_area, rho_ambient, e_ambient;
-  bool reset;
-
-  BLAST_HD bool in_grid(int i, int j) const { return i >= 0 && i < nx && j >= 0 && j < ny; }
-  BLAST_HD bool stable(int i, int j) const { return in_grid(i, j) && old_active(i, j) && new_active(i, j); }
-  BLAST_HD bool dying(int i, int j) const { return in_grid(i, j) && old_active(i, j) && !new_active(i, j); }
-  BLAST_HD int count_stable(int i, int j) const {
-    return stable(i - 1, j) + stable(i + 1, j) + stable(i, j - 1) + stable(i, j + 1);
-  }
-  BLAST_HD int count_stable_block(int i, int j) const {
-    return count_stable(i, j) + stable(i - 1, j - 1) + stable(i + 1, j - 1) + stable(i - 1, j + 1) + stable(i + 1, j + 1);
-  }
-  //! Gas energy per cell area [J/m3] that a covered cell (i, j) hands on: its internal energy, and the kinetic
-  //! energy that leaves the totals (GasTotals) when its faces are stopped: its own quarter of each face's
-  //! m u^2 and, across a face to a stable cell, that cell's quarter too.
-  BLAST_HD double handed_energy(int i, int j) const {
-    double k = 0;
-    auto face = [&](double w, int oi, int oj) { k += (stable(oi, oj) ? 0.5 : 0.25) * 0.5 * (rho(i, j) + rho(oi, oj)) * w * w; };
-    face(u(i, j), i - 1, j);
-    face(u(i + 1, j), i + 1, j);
-    face(v(i, j), i, j - 1);
-    face(v(i, j + 1), i, j + 1);
-    return rho(i, j) * e(i, j) + k;
-  }
-
-  BLAST_HD void operator()(int i, int j) const {
-    double m = rho(i, j), E = rho(i, j) * e(i, j);  // per cell area
-    bool moved = old_active(i, j) != new_active(i, j);
-    double* led = ledger + 4 * (static_cast<index_t>(j) * nx + i);
-    if (moved) {  // covered or uncovered: the ambient state
-      if (!reset) {
-        if (new_active(i, j)) {
-          led[1] += 1.0, led[2] += rho_ambient * cell_area, led[3] += rho_ambient * e_ambient * cell_area;
-        } else {
-          led[0] += 1.0;
-          if (count_stable_block(i, j) == 0) led[2] -= m * cell_area, led[3] -= handed_energy(i, j) * cell_area;
-        }
-      }
-      m = rho_ambient, E = rho_ambient * e_ambient;
-    } else if (stable(i, j) && !reset) {
-      for (int nj = j - 1; nj <= j + 1; ++nj)
-        for (int ni = i - 1; ni <= i + 1; ++ni) {
-          if (!dying(ni, nj)) continue;
-          const int a = count_stable(ni, nj);       // >= 1 when this cell is its edge neighbour
-          if (a > 0 && ni != i && nj != j) continue;  // a diagonal giver only when it has no stable edge neighbour
-          const double share = 1.0 / (a > 0 ? a : count_stable_block(ni, nj));
-          m += share * rho(ni, nj);
-          E += share * handed_energy(ni, nj);
-          moved = true;
-        }
-    }
-    changed(i, j) = moved;
-    rho_next(i, j) = m;
-    e_next(i, j) = moved ? E / m : e(i, j);
-  }
-};
-
-//! Writes the moved gas back (derivatives of a changed cell set to zero), stops the faces of covered cells
-//! (their imposed velocity; their kinetic energy went with the cell's gas) and installs the new mask. Two
-//! covered neighbours write their common face with the same value.
-struct ApplyTransitionKernel {
-  Field2D<const std::uint8_t> new_active, changed;
-  Field2D<const double> rho_next, e_next, u_imposed, v_imposed;
-  Field2D<std::uint8_t> active;
-  cip::GasStateView s;
-  BLAST_HD void operator()(int i, int j) const {
-    if (active(i, j) && !new_active(i, j)) {
-      s.u.f(i, j) = u_imposed(i, j), s.u.f(i + 1, j) = u_imposed(i + 1, j);
-      s.v.f(i, j) = v_imposed(i, j), s.v.f(i, j + 1) = v_imposed(i, j + 1);
-    }
-    active(i, j) = new_active(i, j);
-    if (!changed(i, j)) return;
-    s.rho.f(i, j) = rho_next(i, j), s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
-    s.e.f(i, j) = e_next(i, j), s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
-  }
-};
-
-//! Pressure on each exposed rock edge (docs/coupling.md "Gas -> rock"). The cell the edge faces (the one
-//! holding the point a hundredth of a cell off the midpoint along the outward normal) gives its pressure when
-//! it is active. Otherwise a boundary edge takes the active cell nearest to its midpoint within 2 cells (the
-//! paper's rule; ties go to the first in scan order) and a crack face the ambient pressure: a crack narrower
-//! than the grid holds no gas, and loading its faces with the pressure of a cell beside it would do work
-//! that no gas pays for (both faces of a closed crack get the same pressure, which cancels).
-struct EdgePressureKernel {
-  fdem::RockView rock;
-  cip::GasGrid g;
-  cip::EquationOfState eos;
-  Field2D<const std::uint8_t> active;
-  Field2D<const double> rho, e;
-  double ambient_pressure;
-  BLAST_HD void operator()(index_t si) const {
-    const int s = static_cast<int>(si);
-    const std::uint8_t kind = rock.edge_exposed[s];
-    if (kind == fdem::kEdgeInside) return;
-    const int t = s / 3, a = s, b = 3 * t + (s % 3 + 1) % 3;
-    const double mx = 0.5 * (rock.x[a] + rock.x[b]), my = 0.5 * (rock.y[a] + rock.y[b]);
-    const double ex = rock.x[b] - rock.x[a], ey = rock.y[b] - rock.y[a], len = sqrt(ex * ex + ey * ey);
-    const double off = 0.01 * fmin(g.dx, g.dy) / len;  // outward normal of a counter-clockwise edge: (ey, -ex)
-    const int fi = static_cast<int>(floor((mx + off * ey - g.x_min) / g.dx));
-    const int fj = static_cast<int>(floor((my - off * ex - g.y_min) / g.dy));
-    double p = ambient_pressure;
-    if (fi >= 0 && fi < g.nx && fj >= 0 && fj < g.ny && active(fi, fj)) {
-      p = eos.pressure(rho(fi, fj), e(fi, fj));
-    } else if (kind == fdem::kEdgeBoundary) {
-      const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
-      double best = 1e300;
-      for (int j = imax(0, cj - 2); j <= imin(g.ny - 1, cj + 2); ++j)
-        for (int i = imax(0, ci - 2); i <= imin(g.nx - 1, ci + 2); ++i) {
-          if (!active(i, j)) continue;
-          const double dx = g.cell_x(i) - mx, dy = g.cell_y(j) - my, d = dx * dx + dy * dy;
-          if (d < best) best = d, p = eos.pressure(rho(i, j), e(i, j));
-        }
-    }
-    rock.edge_pressure[s] = p;
-  }
-};
-
-}  // namespace
+}  // namespace detail
 
 GasRockCoupler::GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, const cip::GasPoint& ambient)
-    : gas_(gas), rock_(rock), ambient_(ambient) {
+    : gas_(gas), rock_(rock), ambient_(ambient), a_(std::make_unique<detail::CouplerArrays>()) {
   const index_t n = gas_.grid().padded_shape().size();
-  u_owner_.assign(n, -1);
-  v_owner_.assign(n, -1);
-  new_active_.assign(n, 1);
-  changed_.assign(n, 0);
-  rho_next_.assign(n, 0.0);
-  e_next_.assign(n, 0.0);
-  ledger_.assign(4 * static_cast<index_t>(gas_.grid().nx) * gas_.grid().ny, 0.0);
+  a_->u_owner.assign(n, -1);
+  a_->v_owner.assign(n, -1);
+  a_->new_active.assign(n, 1);
+  a_->changed.assign(n, 0);
+  a_->rho_next.assign(n, 0.0);
+  a_->e_next.assign(n, 0.0);
+  a_->ledger.assign(4 * static_cast<index_t>(gas_.grid().nx) * gas_.grid().ny, 0.0);
 }
+
+GasRockCoupler::~GasRockCoupler() = default;
 
 void GasRockCoupler::rock_to_gas() {
   const cip::GasGrid g = gas_.grid();
   const PaddedShape sh = g.padded_shape();
-  thrust::fill(thrust::device, u_owner_.begin(), u_owner_.end(), -1);
-  thrust::fill(thrust::device, v_owner_.begin(), v_owner_.end(), -1);
+  thrust::fill(thrust::device, a_->u_owner.begin(), a_->u_owner.end(), -1);
+  thrust::fill(thrust::device, a_->v_owner.begin(), a_->v_owner.end(), -1);
   const fdem::RockView rock = rock_.view();
-  const Field2D<int> uo = make_field_view(u_owner_, sh), vo = make_field_view(v_owner_, sh);
+  const Field2D<int> uo = make_field_view(a_->u_owner, sh), vo = make_field_view(a_->v_owner, sh);
   for_each_index("ibm.cover", rock.triangles, CoverKernel{rock, g, uo, vo});
   const cip::ImmersedBoundaryView ib = gas_.immersed_boundary();
-  for_each_cell("ibm.face_velocity.u", 0, g.nx + 1, 0, g.ny, FaceVelocityKernel{rock, g, 0, uo, ib.u_prescribed, ib.u_imposed});
-  for_each_cell("ibm.face_velocity.v", 0, g.nx, 0, g.ny + 1, FaceVelocityKernel{rock, g, 1, vo, ib.v_prescribed, ib.v_imposed});
-  const Field2D<std::uint8_t> fresh = make_field_view(new_active_, sh), changed = make_field_view(changed_, sh);
-  const Field2D<double> rho_next = make_field_view(rho_next_, sh), e_next = make_field_view(e_next_, sh);
+  for_each_cell("ibm.face_velocity.u", 0, g.nx + 1, 0, g.ny, ImposedVelocityKernel{rock, g, 0, uo, ib.u_prescribed, ib.u_imposed});
+  for_each_cell("ibm.face_velocity.v", 0, g.nx, 0, g.ny + 1, ImposedVelocityKernel{rock, g, 1, vo, ib.v_prescribed, ib.v_imposed});
+  const Field2D<std::uint8_t> fresh = make_field_view(a_->new_active, sh), changed = make_field_view(a_->changed, sh);
+  const Field2D<double> rho_next = make_field_view(a_->rho_next, sh), e_next = make_field_view(a_->e_next, sh);
   for_each_cell("ibm.cells.mask", 0, g.nx, 0, g.ny, NewMaskKernel{uo, vo, fresh});
   const cip::GasStateView s = gas_.state();
   for_each_cell("ibm.cells.transition", 0, g.nx, 0, g.ny,
-                TransitionKernel{ib.cell_active, fresh, s.rho.f, s.e.f, s.u.f, s.v.f, rho_next, e_next, changed, device_ptr(ledger_),
+                TransitionKernel{ib.cell_active, fresh, s.rho.f, s.e.f, s.u.f, s.v.f, rho_next, e_next, changed, device_ptr(a_->ledger),
                                  g.nx, g.ny, g.cell_area(), ambient_.density, ambient_.internal_energy, !masks_set_});
   for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny, ApplyTransitionKernel{fresh, changed, rho_next, e_next, ib.u_imposed, ib.v_imposed, ib.cell_active, s});
   masks_set_ = true;
@@ -277,31 +82,18 @@ void GasRockCoupler::step(double dt, int rock_substeps) {
   for (int k = 0; k < rock_substeps; ++k) rock_.step(rock_dt);
 }
 
-double GasRockCoupler::stable_dt(double courant) { return std::min(gas_.courant_dt(courant), rock_.stable_dt()); }
+double GasRockCoupler::stable_dt(double courant) const { return std::min(gas_.courant_dt(courant), rock_.stable_dt()); }
 
-namespace {
-//! Force of the edge pressures on the rock [N/m]: p L along the inward normal of every exposed edge.
-struct EdgeForceOf {
-  fdem::RockView rock;
-  BLAST_HD Vec2Sum operator()(index_t si) const {
-    const int s = static_cast<int>(si);
-    if (!rock.edge_exposed[s]) return {0, 0};
-    const int t = s / 3, a = s, b = 3 * t + (s % 3 + 1) % 3;
-    const double p = rock.edge_pressure[s];  // nodes counter-clockwise: (-dy, dx) points into the triangle
-    return {-p * (rock.y[b] - rock.y[a]), p * (rock.x[b] - rock.x[a])};
-  }
-};
-}  // namespace
 
-CouplingDiagnostics GasRockCoupler::diagnostics() {
+CouplingDiagnostics GasRockCoupler::diagnostics() const {
   CouplingDiagnostics d;
   const Vec2Sum f = reduce_sum("ibm.gas_force", 3 * static_cast<index_t>(rock_.triangle_count()), Vec2Sum{0, 0},
                                EdgeForceOf{rock_.view()});
   d.gas_force_on_rock = {f.x, f.y};
   d.gas_work_on_rock = rock_.energies().pressure_work;
-  const double* led = device_ptr(ledger_);
+  const double* led = device_ptr(a_->ledger);
   auto total = [&](int c) {
-    return reduce_sum("ibm.ledger", static_cast<index_t>(ledger_.size() / 4), 0.0,
+    return reduce_sum("ibm.ledger", static_cast<index_t>(a_->ledger.size() / 4), 0.0,
                       [=] BLAST_HD(index_t k) { return led[4 * k + c]; });
   };
   d.transitions.covered = std::lround(total(0));
@@ -311,7 +103,7 @@ CouplingDiagnostics GasRockCoupler::diagnostics() {
   return d;
 }
 
-long GasRockCoupler::inactive_cells() {
+long GasRockCoupler::inactive_cells() const {
   const cip::GasGrid g = gas_.grid();
   const Field2D<const std::uint8_t> active = gas_.immersed_boundary().cell_active;
   const int nx = g.nx;
@@ -322,12 +114,12 @@ long GasRockCoupler::inactive_cells() {
 
 void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
   w.value("ibm.masks_set", static_cast<int>(masks_set_));
-  w.array("ibm.ledger", ledger_);
+  w.array("ibm.ledger", a_->ledger);
 }
 
 void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
   masks_set_ = r.value<int>("ibm.masks_set") != 0;
-  r.array("ibm.ledger", ledger_, ledger_.size());
+  r.array("ibm.ledger", a_->ledger, a_->ledger.size());
 }
 
 }  // namespace blastsim::ibm

@@ -24,6 +24,7 @@ const std::string example = std::string(BLASTSIM_EXAMPLES_DIR) + "/single_hole/s
 std::vector<std::string> small_case(const fs::path& out) {
   return {"domain.nx=60", "domain.ny=60", "domain.x_min=-0.18", "domain.x_max=0.18", "domain.y_min=-0.18",
           "domain.y_max=0.18", "gas.region.0.radius=0.03", "rock.mesh.radius=0.15", "rock.mesh.hole_radius=0.02",
+          "monitor.blasthole.outer_radius=0.15", "monitor.blasthole.hole_radius=0.02",
           "rock.mesh.element_size=0.01", "monitor.region.0.radius=0.15", "time.end=3e-5", "output.interval=1.5e-5",
           "output.monitor_interval=5", "output.directory=\"" + out.string() + "\""};
 }
@@ -43,7 +44,7 @@ std::map<std::string, double> last_row(const fs::path& p) {
 }
 }  // namespace
 
-TEST_CASE("Driver runs a coupled case: gas, rock and coupling files; the energy budget closes", "[app][coupled]") {
+TEST_CASE("Driver runs a coupled case: gas, rock and coupling files, and the energy budget closes", "[app][coupled]") {
   const fs::path out = fresh_dir("coupled");
   const app::CoupledCaseConfig c = app::read_coupled_case(app::load_input(example, small_case(out)));
   std::ostringstream log;
@@ -64,7 +65,7 @@ TEST_CASE("Driver runs a coupled case: gas, rock and coupling files; the energy 
               100 * residual / work, row.at("broken_joints"), row.at("inside_rock_mass_kg_per_m"));
   CHECK(row.at("time_s") == Approx(3e-5));
   CHECK(work > 0);
-  // The budget (S4 of validation.md) against the energy that crossed the interface: within 10 % on this
+  // The budget (S4 of docs/validation.md) against the energy that crossed the interface: within 10 % on this
   // coarse grid (the hole is 3 cells across in radius).
   CHECK(std::fabs(residual) < 0.10 * work);
   CHECK(row.at("inside_rock_mass_kg_per_m") > 0);
@@ -78,6 +79,8 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(read({"rock.pressure.0.boundary=\"hole\"", "rock.pressure.0.pressure=1e6"}),
                     Catch::Contains("rock.pressure"));
   CHECK_THROWS_WITH(read({"monitor.region.0.shape=\"ring\""}), Catch::Contains("monitor.region.0.shape"));
+  CHECK_THROWS_WITH(read({"monitor.interval=1e-6"}), Catch::Contains("monitor.blasthole.interval"));
+  CHECK_THROWS_WITH(read({"monitor.blasthole.outer_radius=0.01"}), Catch::Contains("monitor.blasthole.outer_radius"));
   CHECK_THROWS_WITH(read({"monitor.region.0.name=\"a b\""}), Catch::Contains("monitor.region"));
   CHECK_THROWS_WITH(read({"rock.youngs_modulus=0"}), Catch::Contains("rock.youngs_modulus"));
   CHECK_THROWS_WITH(read({"gas.courant=2"}), Catch::Contains("gas.courant"));
@@ -153,6 +156,7 @@ std::string small_blast_text(const fs::path& out, double end) {
     << "[time]\nend = " << end << "\n"
     << "[output]\ndirectory = \"" << out.string() << "\"\ninterval = " << end / 2 << "\nmonitor_interval = 10\n"
     << "vtk = false\nprogress_interval = 0.0\n"
+    << "[monitor.blasthole]\ncenter = [0.0, 0.0]\nhole_radius = 0.02\nouter_radius = 0.1\ninterval = 1e-6\n"
     << "[[monitor.region]]\nname = \"disc\"\nshape = \"circle\"\ncenter = [0.0, 0.0]\nradius = 0.1\n"
     << "[[monitor.region]]\nname = \"hole\"\nshape = \"circle\"\ncenter = [0.0, 0.0]\nradius = 0.025\n";
   return s.str();

@@ -61,7 +61,7 @@ TEST_CASE("Driver runs the bundled uniaxial compression: the platen force peaks 
   app::run_rock_case(c, log);
   INFO(log.str());
   // The bottom platen's reaction over the width is the axial stress; the analytic strength of a plane at
-  // 45 - phi/2 is 2 c cos(phi) / (1 - sin(phi)); validation.md F8 bound 20 %.
+  // 45 - phi/2 is 2 c cos(phi) / (1 - sin(phi)); docs/validation.md F8 bound 20 %.
   const std::vector<double> bottom = csv_column(out / "rock_series.csv", "velocity1_reaction_y_N_per_m");
   const std::vector<double> top = csv_column(out / "rock_series.csv", "velocity0_reaction_y_N_per_m");
   REQUIRE(bottom.size() > 100);
@@ -144,7 +144,7 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   CHECK(app::case_kind(both) == app::CaseKind::coupled);
   // Run-time checks: unknown boundary group, a fixed dt above the stable step.
   std::ostringstream log;
-  app::RockCaseConfig c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh_dir("bad").string() + "\""});
+  app::RockCaseConfig c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh_dir("bad_rock").string() + "\""});
   c.pressures.push_back({"nowhere", 1e6});
   CHECK_THROWS_WITH(app::run_rock_case(c, log), Catch::Contains("no such boundary group"));
   c.pressures.clear();

@@ -1,5 +1,5 @@
 //! \file test_explosion2d.cpp
-//! \brief validation.md G2: Toro's 2-D cylindrical explosion against an independent high-resolution radial solution.
+//! \brief docs/validation.md G2: Toro's 2-D cylindrical explosion against an independent high-resolution radial solution.
 #include "catch.hpp"
 #include "gas_cases.hpp"
 #include "radial_reference.hpp"
@@ -96,7 +96,7 @@ TEST_CASE("G2 cylindrical explosion: rays agree and density matches the radial r
     CHECK(r.l1 < previous);
     previous = r.l1;
     if (n == 400) {
-      CHECK(r.l1 <= 2.9e-3);                       // validation.md G2 bound
+      CHECK(r.l1 <= 2.9e-3);                       // docs/validation.md G2 bound
       CHECK(r.ray_max_dev <= 0.02);                // rays agree within 2 % of the jump (smooth parts)
       CHECK(r.ray_mean_dev <= 0.02);               // and on average everywhere
       CHECK_THAT(r.shock_radius, WithinAbs(ref_shock, 0.01));

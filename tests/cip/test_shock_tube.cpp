@@ -1,5 +1,5 @@
 //! \file test_shock_tube.cpp
-//! \brief validation.md G1 (Sod, along x and y) and G6 (the paper's seed states) against the exact Riemann solution.
+//! \brief docs/validation.md G1 (Sod, along x and y) and G6 (the paper's seed states) against the exact Riemann solution.
 #include "catch.hpp"
 #include "gas_cases.hpp"
 
@@ -24,7 +24,7 @@ double sod_l1(int n, Axis axis) {
 }  // namespace
 
 TEST_CASE("G1 Sod shock tube: density L1 error against Toro's exact solution", "[cip][G1]") {
-  // Toro's star values (validation.md) check the exact solver itself first.
+  // Toro's star values (docs/validation.md) check the exact solver itself first.
   const ExactRiemann exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4);
   CHECK_THAT(exact.p_star(), WithinAbs(0.30313, 5e-5));
   CHECK_THAT(exact.u_star(), WithinAbs(0.92745, 5e-5));
@@ -36,7 +36,7 @@ TEST_CASE("G1 Sod shock tube: density L1 error against Toro's exact solution", "
     const double e100 = sod_l1(100, axis), e200 = sod_l1(200, axis), e400 = sod_l1(400, axis);
     std::printf("G1 Sod along %s: L1(rho) = %.3e (100) %.3e (200) %.3e (400) cells\n", axis == Axis::x ? "x" : "y",
                 e100, e200, e400);
-    CHECK(e400 <= 2.1e-3);  // validation.md G1 bound
+    CHECK(e400 <= 2.1e-3);  // docs/validation.md G1 bound
     CHECK(e200 < e100);     // falling as cells double
     CHECK(e400 < e200);
   }
@@ -104,8 +104,7 @@ TEST_CASE("Mask interface: a wall placed through the immersed-boundary input ref
   cip::GasSolver walled = make_shock_tube(300, Axis::x, L, R, 0.5, 0.75);
   {
     // make_shock_tube sets outflow at the tube ends; rebuild with a wall on the right.
-    opt.boundaries.side = {cip::BoundaryKind::outflow, cip::BoundaryKind::wall, cip::BoundaryKind::wall,
-                           cip::BoundaryKind::wall};
+    opt.boundaries = cip::BoundaryConditions::all(cip::BoundaryKind::wall).set(cip::left, cip::BoundaryKind::outflow);
     const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);
     walled = cip::GasSolver(cip::GasGrid::from_box(300, 3, 0, 0.75, 0, 3 * 0.75 / 300), eos, opt);
     walled.initialise([&](double x, double) {

@@ -1,5 +1,5 @@
 //! \file test_smooth_wave.cpp
-//! \brief validation.md G4: observed order of accuracy on smooth periodic waves (entropy wave and acoustic wave).
+//! \brief docs/validation.md G4: observed order of accuracy on smooth periodic waves (entropy wave and acoustic wave).
 #include "catch.hpp"
 #include "gas_cases.hpp"
 
@@ -61,7 +61,7 @@ TEST_CASE("G4 smooth waves: observed order of accuracy", "[cip][G4]") {
   const double order_acoustic = std::log2(a2 / a3);
   std::printf("G4 acoustic wave (1-D): relative L1(p) %.3e / %.3e / %.3e at 50 / 100 / 200 cells, order %.2f then %.2f\n",
               a1, a2, a3, std::log2(a1 / a2), order_acoustic);
-  // validation.md G4: order >= 2 on a smooth density wave (CIP's low numerical diffusion).
+  // docs/validation.md G4: order >= 2 on a smooth density wave (CIP's low numerical diffusion).
   CHECK(order_entropy >= 2.0);
   // Acoustic waves: the linear term c1 rho c |dU| of the paper's eq. (4) acts in every compression, so the
   // scheme damps sound at first order (docs/gas-solver.md). Reported; checked only to converge.

@@ -1,5 +1,5 @@
 //! \file test_strong_shocks.cpp
-//! \brief validation.md G7 (cylindrical Sedov blast), strong-shock convergence, and the conservative vs
+//! \brief docs/validation.md G7 (cylindrical Sedov blast), strong-shock convergence, and the conservative vs
 //! paper transport side by side (the figures of docs/gas-solver.md).
 #include "catch.hpp"
 #include "gas_cases.hpp"
@@ -15,7 +15,7 @@ struct SedovResult {
   double peak_density;  // maximum of the angle-averaged density
 };
 
-//! Cylindrical Sedov blast (validation.md G7): E = 1 per unit length deposited as internal energy in the
+//! Cylindrical Sedov blast (docs/validation.md G7): E = 1 per unit length deposited as internal energy in the
 //! cells within 3.5 dx of the centre, rho0 = 1, background p = 1e-5, gamma 1.4, t = 1, on [-1.2, 1.2]^2.
 SedovResult sedov(int n, cip::Transport transport) {
   const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);

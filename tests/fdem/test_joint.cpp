@@ -1,6 +1,6 @@
 //! \file test_joint.cpp
 //! \brief The cohesive joint law: softening curve, energy dissipated per unit area = G_I / G_II, Mohr-Coulomb
-//! shear strength, irreversible damage (the constitutive part of validation.md F3).
+//! shear strength, irreversible damage (the constitutive part of docs/validation.md F3).
 #include "blastsim/fdem/joint_kernels.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "catch.hpp"
@@ -45,7 +45,7 @@ TEST_CASE("Munjiza's softening curve: end values and its integral", "[fdem][join
   CHECK_THAT(softening_curve(0.0), WithinAbs(1.0, 1e-14));
   CHECK(softening_curve(1.0) == 0.0);
   for (double D = 0.0; D < 1.0; D += 0.05) CHECK(softening_curve(D + 0.05) <= softening_curve(D));  // monotone
-  CHECK_THAT(softening_curve_integral(), WithinAbs(0.386, 0.001));  // fdem.md
+  CHECK_THAT(softening_curve_integral(), WithinAbs(0.386, 0.001));  // docs/fdem-solver.md, "Cohesive joint"
   // The Y codes' softening length 3 G / f dissipates 3 x 0.386 = 1.16 G (the 16 % trap).
   std::printf("softening curve integral %.6f; 3 G / f would dissipate %.3f G\n", softening_curve_integral(),
               3 * softening_curve_integral());

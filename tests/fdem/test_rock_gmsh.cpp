@@ -78,7 +78,7 @@ TEST_CASE("F2: Lame thick cylinder under inner pressure, quasi-static", "[fdem][
   CHECK(s.energies().broken_joints == 0);
 }
 
-// F6 and F8 report their figures (validation.md: looser, mesh-dependent bounds). In this model a crack runs
+// F6 and F8 report their figures (docs/validation.md: looser, mesh-dependent bounds). In this model a crack runs
 // along element edges. F6 is run twice: on a disc whose mesh has a row of joints along the loaded diameter
 // (the crack path the analytic solution assumes; asserted against the 15 % bound) and on a free mesh
 // (reported: near the centre every joint is inclined, and the compression across the diameter, three times

@@ -68,7 +68,7 @@ TEST_CASE("Principal stresses of a symmetric stress", "[fdem][triangle]") {
 TEST_CASE("The paper's rock (Table 2) and its wave speeds", "[fdem][material]") {
   const RockMaterial rock = RockMaterial::paper_table2();
   REQUIRE_NOTHROW(rock.validate());
-  // fdem.md: plane-strain P-wave 5336 m/s, S-wave 2852 m/s.
+  // docs/fdem-solver.md, "The paper's rock (Table 2)": plane-strain P-wave 5336 m/s, S-wave 2852 m/s.
   CHECK_THAT(rock.p_wave_speed(), WithinAbs(5336.0, 1.0));
   CHECK_THAT(rock.s_wave_speed(), WithinAbs(2852.0, 1.0));
   RockMaterial bad = rock;

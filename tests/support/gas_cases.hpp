@@ -30,10 +30,10 @@ inline cip::GasSolver make_shock_tube(int n, Axis axis, Primitive L, Primitive R
   const double w = 3 * length / n;
   const cip::GasGrid grid = along_x ? cip::GasGrid::from_box(n, 3, 0, length, 0, w)
                                     : cip::GasGrid::from_box(3, n, 0, w, 0, length);
-  opt.boundaries.side = along_x ? std::array<BoundaryKind, 4>{BoundaryKind::outflow, BoundaryKind::outflow,
-                                                              BoundaryKind::wall, BoundaryKind::wall}
-                                : std::array<BoundaryKind, 4>{BoundaryKind::wall, BoundaryKind::wall,
-                                                              BoundaryKind::outflow, BoundaryKind::outflow};
+  // Outflow at the tube's ends, walls along its sides.
+  opt.boundaries = cip::BoundaryConditions::all(BoundaryKind::wall)
+                       .set(along_x ? cip::left : cip::bottom, BoundaryKind::outflow)
+                       .set(along_x ? cip::right : cip::top, BoundaryKind::outflow);
   const cip::EquationOfState eos = cip::EquationOfState::ideal(gamma);
   cip::GasSolver s(grid, eos, opt);
   s.initialise([=](double x, double y) {

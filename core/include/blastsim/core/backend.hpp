@@ -5,6 +5,7 @@
 //! same source compiles with g++ (THRUST_DEVICE_SYSTEM_OMP) and with nvcc (THRUST_DEVICE_SYSTEM_CUDA).
 #pragma once
 
+#include "blastsim/core/atomic.hpp"
 #include "blastsim/core/field2d.hpp"
 #include "blastsim/core/macros.hpp"
 
@@ -127,18 +128,6 @@ T reduce_max(const char* label, index_t n, T init, F f) {
 template <class T, class F>
 T reduce_sum(const char* label, index_t n, T init, F f) {
   return reduce_with(label, n, init, f, thrust::plus<T>());
-}
-
-//! Atomic *p = max(*p, v) on device or host threads. The result does not depend on the order of the
-//! writers, so kernels that use it stay deterministic.
-BLAST_HD inline void atomic_max(int* p, int v) {
-#if defined(__CUDA_ARCH__)
-  atomicMax(p, v);
-#else
-  int old = __atomic_load_n(p, __ATOMIC_RELAXED);
-  while (old < v && !__atomic_compare_exchange_n(p, &old, v, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-  }
-#endif
 }
 
 //! Owning array in the backend's memory. Kernels never index it; they get a raw pointer or a view.

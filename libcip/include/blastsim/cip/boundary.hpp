@@ -4,7 +4,6 @@
 
 #include "blastsim/core/macros.hpp"
 
-#include <array>
 #include <string>
 
 namespace blastsim::cip {
@@ -16,19 +15,34 @@ enum class BoundaryKind {
   periodic,  //!< the opposite side continues the domain (must be set on both sides)
 };
 
+//! The four sides of the rectangular domain.
 enum Side { left = 0, right = 1, bottom = 2, top = 3 };
 
+//! The kind of each side, by name: `BoundaryConditions::all(BoundaryKind::outflow).set(bottom, BoundaryKind::wall)`.
 struct BoundaryConditions {
-  std::array<BoundaryKind, 4> side{BoundaryKind::outflow, BoundaryKind::outflow, BoundaryKind::outflow,
-                                   BoundaryKind::outflow};  //!< indexed by Side
-  static BoundaryConditions all(BoundaryKind k) { return BoundaryConditions{{k, k, k, k}}; }
+  BoundaryKind left_side = BoundaryKind::outflow;
+  BoundaryKind right_side = BoundaryKind::outflow;
+  BoundaryKind bottom_side = BoundaryKind::outflow;
+  BoundaryKind top_side = BoundaryKind::outflow;
+  static BoundaryConditions all(BoundaryKind k) { return BoundaryConditions{k, k, k, k}; }
+  //! Sets side s to k; returns *this so that settings chain.
+  BoundaryConditions& set(Side s, BoundaryKind k) {
+    (s == Side::left ? left_side : s == Side::right ? right_side : s == Side::bottom ? bottom_side : top_side) = k;
+    return *this;
+  }
+  //! The kind of side s (a comparison chain, not an array indexed at run time: in a CUDA kernel such an
+  //! index makes the compiler copy the whole kernel argument to local memory).
+  BLAST_HD BoundaryKind kind(int s) const {
+    return s == Side::left ? left_side : s == Side::right ? right_side : s == Side::bottom ? bottom_side : top_side;
+  }
+  //! True when the x (axis 0) or y (axis 1) direction is periodic on both its sides.
+  BLAST_HD bool periodic(int axis) const {
+    return kind(2 * axis) == BoundaryKind::periodic && kind(2 * axis + 1) == BoundaryKind::periodic;
+  }
 };
 
-//! bc.side[s] without indexing the array by a run-time value: in a CUDA kernel such an index makes the
-//! compiler copy the whole kernel argument to local memory (ptxas: a stack frame of about 1 kB).
-BLAST_HD inline BoundaryKind kind_of(const BoundaryConditions& bc, int s) {
-  return s == left ? bc.side[left] : s == right ? bc.side[right] : s == bottom ? bc.side[bottom] : bc.side[top];
-}
+//! bc.kind(s), kept for the kernels that call it by this name.
+BLAST_HD inline BoundaryKind kind_of(const BoundaryConditions& bc, int s) { return bc.kind(s); }
 
 const char* to_string(BoundaryKind k);
 //! Parses "outflow" | "wall" | "periodic"; returns false on anything else.

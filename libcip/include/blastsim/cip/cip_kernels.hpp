@@ -48,7 +48,7 @@ struct UpwindBlock {
 };
 
 //! 2-D unsplit cubic CIP (Yabe, Ishikawa, Wang et al., CPC 66 (1991) 233, type-A cubic with ten
-//! coefficients; coefficients as in docs/cip.md). Dx = -sign(u) dx, Dy = -sign(v) dy are the offsets of
+//! coefficients; coefficients in docs/gas-solver.md, "2-D CIP interpolation"). Dx = -sign(u) dx, Dy = -sign(v) dy are the offsets of
 //! the upwind points, X = -u dt, Y = -v dt the departure point. With Limiter::minmax, a cubic value outside
 //! [min, max] of the four block values is replaced by the bilinear interpolant and its gradient, which
 //! keeps positive fields positive.

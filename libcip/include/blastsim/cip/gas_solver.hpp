@@ -9,6 +9,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,12 +22,19 @@ namespace blastsim::cip {
 
 struct BoundaryContext;
 struct StepViews;
+namespace detail {
+struct GasArrays;
+}
 
-//! One gas solver on one grid. The state lives in device memory; state() and immersed_boundary() expose
-//! views of it so a coupler can read pressures and impose solid velocities without host copies.
+//! One gas solver on one grid. The state lives in device memory behind the class (this header needs no
+//! backend headers); state() and immersed_boundary() expose views of it so a coupler can read pressures and
+//! impose solid velocities without host copies.
 class GasSolver {
  public:
   GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasSolverOptions& options = {});
+  ~GasSolver();
+  GasSolver(GasSolver&&) noexcept;
+  GasSolver& operator=(GasSolver&&) noexcept;
 
   const GasGrid& grid() const { return grid_; }
   const EquationOfState& eos() const { return eos_; }
@@ -40,10 +48,11 @@ class GasSolver {
   void initialise(const std::function<GasPoint(double x, double y)>& state_at);
 
   //! Views of the current state; after writing interior values, call apply_boundaries().
-  GasStateView state() { return state_.view(grid_.padded_shape()); }
-  ImmersedBoundaryView immersed_boundary() { return immersed_.view(grid_.padded_shape()); }
+  GasStateView state();
+  GasStateReadView state() const;  //!< read-only view, for queries
+  ImmersedBoundaryView immersed_boundary();
   //! Cell-centred pressure p + q of the last step's non-advection phase [Pa] (padded shape).
-  Field2D<double> pressure_with_viscosity() { return make_field_view(pressure_, grid_.padded_shape()); }
+  Field2D<double> pressure_with_viscosity();
 
   //! Fills ghost values from the outer boundary conditions. initialise() and step() leave them filled;
   //! call this after writing to the interior through state().
@@ -51,27 +60,27 @@ class GasSolver {
 
   //! max over active cells of max((|u_c| + c)/dx, (|v_c| + c)/dy) [1/s]; +infinity when any active cell
   //! holds a non-finite or non-positive density or internal energy (see describe_invalid_cell()).
-  double max_signal_rate();
+  double max_signal_rate() const;
   //! Largest dt [s] with Courant number `courant`: courant / max_signal_rate().
-  double courant_dt(double courant) { return courant / max_signal_rate(); }
+  double courant_dt(double courant) const { return courant / max_signal_rate(); }
 
   //! Advances one step of dt [s]: ghosts, P = p + q, non-advection, derivative update, CIP advection.
   void step(double dt);
 
   //! Totals over the active cells whose centres lie in `region` (default: the whole grid).
-  GasTotals totals(const CellRegion& region = {});
+  GasTotals totals(const CellRegion& region = {}) const;
   //! Cumulative flow out through the outer boundary since initialise() (accumulated every step).
   const BoundaryOutflow& boundary_outflow() const { return outflow_; }
   //! Cumulative energy [J/m] that immersed (prescribed) faces gave the gas: where setting such a face to the
   //! solid's velocity leaves its dual cell a negative kinetic-energy balance, the deficit is not taken from
   //! the gas's internal energy but counted here (conservative transport; docs/gas-solver.md). A coupled
   //! budget counts it as work of the rock on the gas.
-  double immersed_face_work();
+  double immersed_face_work() const;
   //! Samples the gas at host points [m] (a device gather; cost independent of the grid size).
-  std::vector<GasSample> sample(const std::vector<std::array<double, 2>>& points);
-  HostGasFields to_host();
+  std::vector<GasSample> sample(const std::vector<std::array<double, 2>>& points) const;
+  HostGasFields to_host() const;
   //! Describes the first active cell with a non-finite or non-positive density or energy ("" if none).
-  std::string describe_invalid_cell();
+  std::string describe_invalid_cell() const;
 
   //! Appends the state that carries from one step to the next (fields with derivatives, immersed-boundary
   //! input, outflow reference and balance, time, step count) to a checkpoint; read_checkpoint() restores it
@@ -81,25 +90,16 @@ class GasSolver {
 
  private:
   BoundaryContext boundary_context() const;
-  StepViews step_views();
+  StepViews step_views() const;
   void transport_conservatively(double dt);
+  void accumulate_boundary_outflow(double dt);
   GasGrid grid_;
   EquationOfState eos_;
   GasSolverOptions options_;
-  GasState state_;      // current state (n)
-  GasState starred_;    // after the non-advection phase (*)
-  ImmersedBoundaryArrays immersed_;
-  DeviceVector<double> pressure_;  // P = p + q
-  DeviceVector<double> outflow_pressure_, outflow_velocity_;  // OutflowReference, set by initialise()
-  // Conservative transport work arrays (padded shape): mass and internal-energy fluxes through x- and
-  // y-faces, cell internal energy per volume, kinetic energy dissipated per face.
-  DeviceVector<double> mass_flux_x_, mass_flux_y_, energy_flux_x_, energy_flux_y_, internal_energy_density_;
-  DeviceVector<double> dissipation_u_, dissipation_v_;
-  DeviceVector<double> solid_work_u_, solid_work_v_;  // cumulative, per face [J/m3]: immersed_face_work()
+  std::unique_ptr<detail::GasArrays> a_;  // every device array (gas_storage.hpp)
   double time_ = 0.0;
   long long steps_ = 0;
   BoundaryOutflow outflow_;
-  void accumulate_boundary_outflow(double dt);
 };
 
 //! Marks a fixed solid through the immersed-boundary input: faces whose point lies inside get velocity 0,

@@ -9,7 +9,7 @@
 namespace blastsim::fdem {
 
 //! Munjiza's softening curve z(D), D in [0, 1] the damage: z(0) = 1, z(1) = 0, with a = 0.63, b = 1.8, c = 6
-//! (fdem.md): z = [1 - (a+b-1)/(a+b) exp(D (a + c b) / ((a+b)(1-a-b)))] [a (1-D) + b (1-D)^c].
+//! (docs/fdem-solver.md, "Cohesive joint"): z = [1 - (a+b-1)/(a+b) exp(D (a + c b) / ((a+b)(1-a-b)))] [a (1-D) + b (1-D)^c].
 BLAST_HD inline double softening_curve(double D) {
   const double a = 0.63, b = 1.8, c = 6.0;
   if (D >= 1.0) return 0.0;
@@ -25,8 +25,9 @@ double softening_curve_integral();
 //! energy G [J/m2] at strength f [Pa] and peak separation `peak` [m]: the work of the whole curve is the
 //! pre-peak part (2/3) f peak plus the softening part f x length x softening_curve_integral(), so
 //! length = (G - (2/3) f peak) / (f softening_curve_integral()), about 2.59 G / f when the peak part is small.
-//! (The Y codes' 3 G / f dissipates about 1.16 G plus the peak part: fdem.md's "16 % trap".) Throws
-//! InputError when the pre-peak part alone exceeds G (element too large or joint penalty too small).
+//! (The Y codes' 3 G / f dissipates about 1.16 G plus the peak part: docs/fdem-solver.md, "Softening length
+//! (the 16 % trap)".) Throws InputError unless the pre-peak part stays below G / 2 (element too large or joint
+//! penalty too small).
 double softening_length(double fracture_energy, double strength, double peak);
 
 //! Peak-stress parameters of one joint integration point.
@@ -47,7 +48,7 @@ struct JointTraction {
   double damage;   //!< D in [0, 1]; 1: broken
 };
 
-//! Traction of the cohesive law for opening o and slip s [m] (fdem.md): before the peak
+//! Traction of the cohesive law for opening o and slip s [m] (docs/fdem-solver.md, "Cohesive joint"): before the peak
 //! sigma = (2 o/o_p - (o/o_p)^2) f_t, a penalty 2 o f_t / o_p in compression; tau likewise with the shear
 //! strength f_s = c - sigma tan(phi) under compression (Mohr-Coulomb), c otherwise. Past a peak the damage
 //! D = sqrt(((o - o_p)/o_t)^2 + ((|s| - s_p)/s_t)^2) (each term only when past its own peak) and both

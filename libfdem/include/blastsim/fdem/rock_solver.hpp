@@ -1,20 +1,22 @@
 //! \file rock_solver.hpp
 //! \brief The FDEM rock solver: explicit step of elastic triangles, cohesive joints, contact with friction.
 //!
-//! Device-array interface (what the gas coupling and other codes use): node positions and velocities, one
-//! pressure per triangle edge (`edge_pressure()`, applied only where `edge_exposed()` is set: the mesh
+//! Device-array interface (what the gas coupling and other codes use, view()): node positions and velocities,
+//! one pressure per triangle edge (`edge_pressure`, applied only where `edge_exposed` is set: the mesh
 //! boundary and both faces of every broken joint). Edge slot 3 t + k of triangle t runs from node 3 t + k to
 //! node 3 t + (k + 1) % 3 (nodes counter-clockwise), so a slot index is also the index of its first node.
 //! Force assembly is a gather (every node sums its own contributions), so results are bitwise repeatable.
+//! The arrays live behind the class (rock_fields.hpp lists them), so this header needs no backend headers.
 #pragma once
 
-#include "blastsim/core/backend.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/mesh.hpp"
+#include "blastsim/fdem/rock_fields.hpp"
 #include "blastsim/fdem/rock_types.hpp"
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace blastsim {
@@ -28,7 +30,8 @@ namespace detail {
 struct RockArrays;
 }
 
-//! Non-owning device views of the rock state, for coupling kernels.
+//! Non-owning device views of the rock state, for coupling kernels: positions and velocities are read, the
+//! edge pressures written.
 struct RockView {
   const double* x;
   const double* y;
@@ -42,6 +45,9 @@ struct RockView {
 class RockSolver {
  public:
   RockSolver(const FdemTopology& topology, const RockMaterial& material, const RockOptions& options);
+  ~RockSolver();
+  RockSolver(RockSolver&&) noexcept;
+  RockSolver& operator=(RockSolver&&) noexcept;
 
   //! Largest stable time step [s] of the explicit scheme: 2 / omega_max, omega_max^2 bounded per triangle
   //! by 4 c_p^2 / h^2 (h its smallest altitude) + 6 sqrt(2) p / (rho A) (joint penalty p) + 36 p_c / (rho h^2)
@@ -75,8 +81,9 @@ class RockSolver {
 
   // --- device-array interface ---
   RockView view();
-  DeviceVector<double>& edge_pressure() { return edge_pressure_; }
-  const DeviceVector<std::uint8_t>& edge_exposed() const { return edge_exposed_; }
+  //! Host copies of the edge pressures [Pa] and exposure flags, one per edge slot (for tests and output).
+  std::vector<double> edge_pressures() const;
+  std::vector<std::uint8_t> edge_exposure() const;
 
   // --- checkpoint and restart ---
   //! Appends every array and counter of the solver to a checkpoint; read_checkpoint() restores them into a
@@ -85,14 +92,14 @@ class RockSolver {
   void read_checkpoint(CheckpointReader& r);
 
   // --- diagnostics and output (host copies; each costs a device sync) ---
-  RockEnergies energies();
+  RockEnergies energies() const;
   RockSnapshot snapshot() const;
   //! Total force [N/m] that the prescribed-velocity supports exerted on `nodes` in the last step.
   std::array<double, 2> support_reaction(const std::vector<int>& nodes) const;
   //! support_reaction() of each group of nodes, from one copy of the support forces.
   std::vector<std::array<double, 2>> support_reactions(const std::vector<std::vector<int>>& groups) const;
   //! Sum over nodes of the contact force magnitude [N/m] of the last step (0: nothing touches).
-  double contact_force_norm();
+  double contact_force_norm() const;
   double time() const { return time_; }
   long steps() const { return steps_; }
   int triangle_count() const { return triangles_; }
@@ -108,56 +115,19 @@ class RockSolver {
 
  private:
   void build_contact_pairs();  //!< pair numbering from the candidate lists (rebuild, checkpoint read)
-  detail::RockArrays arrays();
-  template <class Self, class Fn>
-  static void for_each_checkpoint_array(Self& self, Fn&& fn);
 
   RockMaterial material_;
   RockOptions options_;
   int triangles_ = 0, joints_ = 0;
   std::vector<BoundaryEdge> boundary_edges_;
-  std::vector<std::array<int, 4>> joint_nodes_host_;
+  std::vector<JointNodes> joint_nodes_host_;
   double stable_dt_ = 0, time_ = 0, pressure_scale_ = 1.0, dt_prev_ = 0;
   long steps_ = 0, rebuilds_ = 0;
-
-  // nodes (3 per triangle)
-  DeviceVector<double> x_, y_, vx_, vy_, x0_, y0_, mass_;
-  DeviceVector<double> f_tri_x_, f_tri_y_, f_con_x_, f_con_y_;  // triangle and contact forces per node
-  DeviceVector<double> f_pres_x_, f_pres_y_;                    // pressure loads per node (triangle phase)
-  DeviceVector<std::uint8_t> constraint_;                      // bit 0: x prescribed, bit 1: y prescribed
-  DeviceVector<double> v_prescribed_;                           // 2 per node
-  DeviceVector<double> work_;  // kWorkKinds per node: pressure, joint, contact, support, gravity
-  DeviceVector<double> support_;                                // 2 per node: support force of the last step
-  // triangles
-  DeviceVector<double> inv_f0_;      // 4 per triangle
-  DeviceVector<double> area0_, eta_;  // [m2], damping coefficient [Pa s]
-  DeviceVector<double> stress_;      // 3 per triangle
-  DeviceVector<double> dissipation_;  // 2 per triangle: cumulative damping, friction [J/m]
-  // edge slots (3 per triangle)
-  DeviceVector<double> slot_force_;  // 4 per slot: joint force on the slot's first and second node
-  DeviceVector<int> slot_neighbour_;  // triangle across the edge, or -1
-  DeviceVector<int> slot_joint_;      // joint across the edge, or -1
-  DeviceVector<std::uint8_t> edge_exposed_;
-  DeviceVector<double> edge_pressure_;
-  // joints
-  DeviceVector<int> joint_nodes_;     // 4 per joint: a0, a1, b0, b1
-  DeviceVector<double> joint_strength_;  // 8 per joint: JointStrength, then the initial length [m]
-  DeviceVector<double> joint_damage_;    // 3 per joint
-  DeviceVector<double> joint_state_;     // 6 per joint: opening and slip at the three points [m]
-  DeviceVector<double> joint_traction_;  // 6 per joint: sigma and tau at the three points [Pa]
-  DeviceVector<std::uint8_t> joint_broken_;
-  // contact broad phase: uniform grid, triangles sorted by cell
-  DeviceVector<int> cell_key_, sorted_triangles_, cell_start_, cell_end_;
-  DeviceVector<int> neighbour_offset_, neighbour_list_;  // candidates within the buffer, per triangle (CSR)
-  // contact pairs: each candidate pair once (i < j), rebuilt with the lists (not checkpointed: derived)
-  int pairs_ = 0;
-  DeviceVector<int> pair_offset_;  // per triangle (+1): first pair it leads
-  DeviceVector<int> slot_pair_;    // per candidate slot: its pair
-  DeviceVector<int> pair_ij_;      // 2 per pair: i < j
-  DeviceVector<std::uint8_t> pair_touch_;  // per pair, this step: 1 when touching
-  DeviceVector<double> pair_load_;  // 13 per pair, valid when touching: loads on i's and j's nodes, friction power
+  std::unique_ptr<detail::RockArrays> a_;  // every device array (rock_storage.hpp)
+  // contact broad phase: uniform grid (cell size, origin, cells), buffer, pairs, travel since the last build
   double cell_size_ = 0, grid_x0_ = 0, grid_y0_ = 0;
   int grid_nx_ = 0, grid_ny_ = 0;
+  int pairs_ = 0;
   double buffer_ = 0, travel_since_build_ = 0;
 };
 

@@ -16,7 +16,7 @@ inline constexpr int kWorkKinds = 5;
 
 //! Numerical parameters of the rock model (the physical ones are in RockMaterial).
 struct RockOptions {
-  double joint_penalty_factor = 10.0;    //!< joint penalty p / E [-] (fdem.md: 10 to 100)
+  double joint_penalty_factor = 10.0;    //!< joint penalty p / E [-] (docs/fdem-solver.md: 10 to 100)
   double contact_penalty_factor = 10.0;  //!< contact penalty p_c / E [-]
   double damping_ratio = 0.0;            //!< beta in eta = 2 h beta sqrt(E rho), in [0, 1)
   std::array<double, 2> gravity{0.0, 0.0};  //!< [m/s2]

@@ -31,7 +31,7 @@ BLAST_HD inline Mat2 edge_matrix(const Vec2& p0, const Vec2& p1, const Vec2& p2)
   return {p1.x - p0.x, p2.x - p0.x, p1.y - p0.y, p2.y - p0.y};
 }
 
-//! Cauchy stress [Pa] of a constant-strain triangle in plane strain (Munjiza 2004, ch. 2; fdem.md):
+//! Cauchy stress [Pa] of a constant-strain triangle in plane strain (Munjiza 2004, ch. 2; docs/fdem-solver.md, "Triangle internal force"):
 //! F = FX F0^-1, B = F F^T, J = det F, T = mu (B - I)/J + lambda/2 (J - 1/J) I + eta D with
 //! D = sym(L), L = LX FX^-1. For small strain it reduces to Hooke's law 2 mu eps + lambda tr(eps) I.
 //! inv_F0: inverse of the initial edge matrix; FX, LX: current edge matrices of positions and velocities;

@@ -1,5 +1,5 @@
 //! \file coupler.hpp
-//! \brief The immersed-boundary coupling of a GasSolver and a RockSolver through their device arrays (docs/ibm.md).
+//! \brief The immersed-boundary coupling of a GasSolver and a RockSolver through their device arrays (docs/coupling.md).
 //!
 //! Rock -> gas: every staggered velocity point inside a rock triangle takes the velocity interpolated from
 //! the triangle's nodes; a cell whose four velocity points are all in rock is inactive and holds the ambient
@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 
 namespace blastsim::ibm {
 
@@ -39,11 +40,31 @@ inline int rock_substeps(double dt, double rock_dt) {
   return std::max(1, static_cast<int>(std::ceil(dt / rock_dt * (1 - 1e-12))));
 }
 
+//! One coupled step: its dt [s] and the number of rock steps that fill it.
+struct CoupledStep {
+  double dt;
+  int rock_substeps;
+};
+
+//! The coupled step's dt policy (docs/coupling.md), from time t [s]: the gas's Courant limit gas_dt [s] and,
+//! unless the rock subcycles, the rock's step rock_dt [s] (the paper's single dt), shortened to land on
+//! `until` [s] (an output time); with subcycling the rock fills the step with rock_substeps(dt, rock_dt) steps.
+inline CoupledStep plan_coupled_step(double t, double gas_dt, double rock_dt, bool subcycling, double until) {
+  double dt = subcycling ? gas_dt : std::min(gas_dt, rock_dt);
+  if (t + dt > until) dt = until - t;
+  return {dt, subcycling ? rock_substeps(dt, rock_dt) : 1};
+}
+
+namespace detail {
+struct CouplerArrays;
+}
+
 class GasRockCoupler {
  public:
   //! `ambient`: the state an inactive cell holds, and the one an uncovered cell starts from (the paper:
   //! 1.2 kg/m3, 2.09e5 J/kg, at rest).
   GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, const cip::GasPoint& ambient);
+  ~GasRockCoupler();
 
   //! Masks and imposed velocities from the rock's current nodes. Search: each triangle visits only the
   //! velocity points in its bounding box; a point covered by several (overlapping) triangles takes the one
@@ -64,29 +85,28 @@ class GasRockCoupler {
   void step(double dt, int rock_substeps = 1);
 
   //! Largest dt [s] that both solvers accept: min(gas Courant limit at `courant`, rock stable step).
-  double stable_dt(double courant);
+  double stable_dt(double courant) const;
 
   //! Number of inactive (rock-covered) cells, for diagnostics and tests.
-  long inactive_cells();
+  long inactive_cells() const;
   //! Force of the gas on the rock, its cumulative work and the cell-transition ledger (device reductions).
-  CouplingDiagnostics diagnostics();
+  CouplingDiagnostics diagnostics() const;
   //! The coupler's own state (whether the masks are set, the transition ledger) in a checkpoint; the solvers
   //! write theirs separately.
   void write_checkpoint(CheckpointWriter& w) const;
   void read_checkpoint(CheckpointReader& r);
 
   //! Gas mass and energy in the active cells whose centres lie in `region`.
-  cip::GasTotals gas_in(const cip::CellRegion& region) { return gas_.totals(region); }
+  cip::GasTotals gas_in(const cip::CellRegion& region) const { return gas_.totals(region); }
 
  private:
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   cip::GasPoint ambient_;
   bool masks_set_ = false;
-  DeviceVector<int> u_owner_, v_owner_;  // padded shape: triangle covering each x-face / y-face point, -1: none
-  DeviceVector<std::uint8_t> new_active_, changed_;  // padded shape: mask being built, cells whose gas moved
-  DeviceVector<double> rho_next_, e_next_;           // padded shape: density and specific energy after the move
-  DeviceVector<double> ledger_;  // 4 per cell: covered, uncovered, mass created [kg/m], energy created [J/m]
+  // Padded-shape work arrays (owners of the face points, the mask being built, the moved gas) and the
+  // transition ledger, behind the class (coupler.cpp).
+  std::unique_ptr<detail::CouplerArrays> a_;
 };
 
 }  // namespace blastsim::ibm

@@ -1,5 +1,5 @@
 //! \file coupling_kernels.hpp
-//! \brief Small geometric kernels of the immersed-boundary coupling (docs/ibm.md): points in triangles and
+//! \brief Small geometric kernels of the immersed-boundary coupling (docs/coupling.md): points in triangles and
 //! shape-function interpolation.
 #pragma once
 

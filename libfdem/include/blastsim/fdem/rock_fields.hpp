@@ -1,0 +1,206 @@
+//! \file rock_fields.hpp
+//! \brief Every array of the rock solver, declared once: params (fixed after construction), loads (set by the
+//! host between steps), state (what evolves) and the contact broad phase, as X-macro lists that generate the
+//! kernels' views here and the solver's storage and checkpoint records in rock_storage.hpp.
+//!
+//! A list entry is X(element type, name, comment). A group's view holds one pointer per entry; params views
+//! are read-only, the others come as View<Access::read> (const pointers) or View<Access::read_write>, so
+//! a kernel's members show what it reads and what it writes. Indexing: node n = 3 t + k of triangle t (each
+//! triangle owns its three nodes); edge slot 3 t + k runs from node 3 t + k to node 3 t + (k + 1) % 3;
+//! joint j joins two edge slots. Plain header: no backend dependency.
+#pragma once
+
+#include "blastsim/core/access.hpp"
+#include "blastsim/fdem/joint_kernels.hpp"
+#include "blastsim/fdem/triangle_kernels.hpp"
+
+#include <cstdint>
+
+namespace blastsim::fdem {
+
+//! Cumulative work [J/m] of each kind of force on one node (trapezoid rule, NodeUpdateKernel).
+struct NodeWork {
+  double pressure;  //!< edge pressures (in a coupled run: the gas)
+  double joint;     //!< done on the cohesive joints (the negative of their forces' work)
+  double contact;   //!< done on the contacts
+  double support;   //!< prescribed-velocity supports
+  double gravity;
+};
+
+//! Cauchy stress of a constant-strain triangle [Pa].
+struct TriangleStress {
+  double xx, xy, yy;
+};
+
+//! Cumulative dissipation [J/m] booked on one triangle.
+struct TriangleDissipation {
+  double damping;   //!< its viscous damping eta D
+  double friction;  //!< Coulomb friction of the contact pairs it leads
+};
+
+//! Joint forces [N/m] on the two nodes of one edge slot (its first node, then its second).
+struct SlotForce {
+  Vec2 first, second;
+};
+
+//! The four nodes of a joint: face A runs a0 -> a1; face B runs b0 -> b1, b0 opposite a1, b1 opposite a0.
+//! a0 (b0) is also the edge slot of face A (B).
+struct JointNodes {
+  int a0, a1, b0, b1;
+};
+
+//! Values at a joint's three integration points (its two ends and its middle, weights 1/6, 2/3, 1/6).
+inline constexpr int kJointPoints = 3;
+struct JointPointValues {
+  double normal[kJointPoints];  //!< opening [m] or normal traction [Pa], tension positive
+  double shear[kJointPoints];   //!< slip [m] or shear traction [Pa]
+};
+struct JointPointDamage {
+  double point[kJointPoints];  //!< damage D in [0, 1]
+};
+
+//! The two triangles of a contact pair, i < j.
+struct TrianglePair {
+  int i, j;
+};
+
+//! What a touching contact pair puts on its triangles' nodes [N/m] and its friction power [W/m].
+struct PairLoad {
+  Vec2 on_i[3], on_j[3];
+  double friction_power;
+};
+
+// ---- params: fixed after construction -------------------------------------------------------------------
+#define BLASTSIM_ROCK_NODE_PARAMS(X)                             \
+  X(double, x0, "initial x [m]")                                 \
+  X(double, y0, "initial y [m]")                                 \
+  X(double, mass, "lumped mass, a third of its triangle's [kg/m]")
+#define BLASTSIM_ROCK_TRIANGLE_PARAMS(X)                                   \
+  X(Mat2, inv_f0, "inverse of the initial edge matrix [1/m]")             \
+  X(double, area0, "initial area [m2]")                                   \
+  X(double, eta, "viscous damping coefficient [Pa s]")
+#define BLASTSIM_ROCK_EDGE_PARAMS(X)                         \
+  X(int, neighbour, "triangle across the edge slot, or -1")  \
+  X(int, joint, "joint across the edge slot, or -1")
+#define BLASTSIM_ROCK_JOINT_PARAMS(X)                           \
+  X(JointNodes, nodes, "its four nodes")                        \
+  X(JointStrength, strength, "peak stresses and lengths of the joint law") \
+  X(double, length, "initial length [m]")
+
+// ---- loads: set by the host between steps, read by the kernels -------------------------------------------
+#define BLASTSIM_ROCK_NODE_LOADS(X)                                  \
+  X(std::uint8_t, constraint, "bit 0: x velocity prescribed; bit 1: y") \
+  X(Vec2, v_prescribed, "prescribed velocity [m/s]")
+
+// ---- state: what evolves ----------------------------------------------------------------------------------
+#define BLASTSIM_ROCK_NODE_MOTION(X)    \
+  X(double, x, "position x [m]")        \
+  X(double, y, "position y [m]")        \
+  X(double, vx, "velocity x [m/s]")     \
+  X(double, vy, "velocity y [m/s]")
+#define BLASTSIM_ROCK_NODE_FORCES(X)                                   \
+  X(double, triangle_x, "force of its triangle, x [N/m]")              \
+  X(double, triangle_y, "force of its triangle, y [N/m]")              \
+  X(double, contact_x, "contact force, x [N/m]")                       \
+  X(double, contact_y, "contact force, y [N/m]")                       \
+  X(double, pressure_x, "load of its triangle's exposed-edge pressures, x [N/m]") \
+  X(double, pressure_y, "load of its triangle's exposed-edge pressures, y [N/m]")
+#define BLASTSIM_ROCK_NODE_LEDGER(X)                             \
+  X(NodeWork, work, "cumulative work of each kind of force")     \
+  X(Vec2, support, "force of the prescribed-velocity support in the last step [N/m]")
+#define BLASTSIM_ROCK_TRIANGLE_STATE(X)                          \
+  X(TriangleStress, stress, "Cauchy stress of the last step")    \
+  X(TriangleDissipation, dissipation, "cumulative dissipation")
+#define BLASTSIM_ROCK_EDGE_STATE(X)                                                        \
+  X(SlotForce, joint_force, "force of the joint across the slot on the slot's two nodes") \
+  X(std::uint8_t, exposed, "kEdgeInside, kEdgeBoundary or kEdgeCrackFace")                \
+  X(double, pressure, "pressure on the edge when exposed [Pa] (written by a coupler)")
+#define BLASTSIM_ROCK_JOINT_STATE(X)                                       \
+  X(JointPointDamage, damage, "irreversible damage at the three points")   \
+  X(JointPointValues, separation, "opening and slip at the three points [m]") \
+  X(JointPointValues, traction, "normal and shear traction at the three points [Pa]") \
+  X(std::uint8_t, broken, "1 once two of its three points reached damage 1")
+
+// ---- contact broad phase (rebuilt from the positions; checkpointed so a restart keeps the same lists) ----
+#define BLASTSIM_ROCK_CONTACT_GRID(X)                                              \
+  X(int, cell_key, "grid cell of each triangle's centroid")                        \
+  X(int, sorted_triangles, "triangles sorted by cell (stable: index order inside a cell)") \
+  X(int, cell_start, "first entry of each cell in sorted_triangles")               \
+  X(int, cell_end, "one past its last entry")                                      \
+  X(int, neighbour_offset, "per triangle (+1): start of its candidate list (CSR)") \
+  X(int, neighbour_list, "contact candidates within the buffer")
+// ---- contact pairs: each candidate pair once, derived from the lists (not checkpointed) -----------------
+#define BLASTSIM_ROCK_CONTACT_PAIRS(X)                                    \
+  X(int, pair_offset, "per triangle (+1): first pair it leads")           \
+  X(int, slot_pair, "per candidate slot: its pair")                       \
+  X(TrianglePair, pair, "the pair's triangles, i < j")                    \
+  X(std::uint8_t, touch, "1 when the pair touched in this step")          \
+  X(PairLoad, load, "the pair's loads, valid when touching")
+
+//! Read-only views of the params.
+struct NodeParams {
+  BLASTSIM_ROCK_NODE_PARAMS(BLASTSIM_CONST_VIEW_MEMBER)
+};
+struct TriangleParams {
+  BLASTSIM_ROCK_TRIANGLE_PARAMS(BLASTSIM_CONST_VIEW_MEMBER)
+};
+struct EdgeParams {
+  BLASTSIM_ROCK_EDGE_PARAMS(BLASTSIM_CONST_VIEW_MEMBER)
+};
+struct JointParams {
+  BLASTSIM_ROCK_JOINT_PARAMS(BLASTSIM_CONST_VIEW_MEMBER)
+};
+struct NodeLoads {
+  BLASTSIM_ROCK_NODE_LOADS(BLASTSIM_CONST_VIEW_MEMBER)
+};
+
+//! Views of the state, with the access the kernel needs.
+template <Access A>
+struct NodeMotion {
+  BLASTSIM_ROCK_NODE_MOTION(BLASTSIM_VIEW_MEMBER)
+  BLAST_HD Vec2 position(int n) const { return {x[n], y[n]}; }
+  BLAST_HD Vec2 velocity(int n) const { return {vx[n], vy[n]}; }
+  //! Positions of triangle t's nodes.
+  BLAST_HD void triangle(int t, Vec2 p[3]) const {
+    for (int k = 0; k < 3; ++k) p[k] = position(3 * t + k);
+  }
+};
+template <Access A>
+struct NodeForces {
+  BLASTSIM_ROCK_NODE_FORCES(BLASTSIM_VIEW_MEMBER)
+};
+template <Access A>
+struct NodeLedger {
+  BLASTSIM_ROCK_NODE_LEDGER(BLASTSIM_VIEW_MEMBER)
+};
+template <Access A>
+struct TriangleState {
+  BLASTSIM_ROCK_TRIANGLE_STATE(BLASTSIM_VIEW_MEMBER)
+};
+template <Access A>
+struct EdgeState {
+  BLASTSIM_ROCK_EDGE_STATE(BLASTSIM_VIEW_MEMBER)
+};
+template <Access A>
+struct JointState {
+  BLASTSIM_ROCK_JOINT_STATE(BLASTSIM_VIEW_MEMBER)
+};
+template <Access A>
+struct ContactGrid {
+  BLASTSIM_ROCK_CONTACT_GRID(BLASTSIM_VIEW_MEMBER)
+};
+template <Access A>
+struct ContactPairs {
+  BLASTSIM_ROCK_CONTACT_PAIRS(BLASTSIM_VIEW_MEMBER)
+};
+
+//! The edge-slot rule (one place for it): slot 3 t + k of triangle t runs from node 3 t + k to the next
+//! node of the triangle, counter-clockwise.
+BLAST_HD inline int slot_first_node(int slot) { return slot; }
+BLAST_HD inline int slot_second_node(int slot) { return 3 * (slot / 3) + (slot % 3 + 1) % 3; }
+//! The slot that ends at node n (n is its second node).
+BLAST_HD inline int slot_ending_at(int n) { return 3 * (n / 3) + (n % 3 + 2) % 3; }
+//! Outward normal of the edge from p0 to p1 of a counter-clockwise triangle, scaled by the edge length.
+BLAST_HD inline Vec2 edge_outward_normal(const Vec2& p0, const Vec2& p1) { return {p1.y - p0.y, -(p1.x - p0.x)}; }
+
+}  // namespace blastsim::fdem

@@ -1,0 +1,435 @@
+//! \file rock_step_kernels.hpp
+//! \brief The kernels of one FDEM step (triangles, joints, contact, node update; one thread per item) over the
+//! views of rock_fields.hpp: each kernel's members say what it reads (params, read views) and what it writes.
+#pragma once
+
+#include "blastsim/fdem/contact_kernels.hpp"
+#include "blastsim/fdem/joint_kernels.hpp"
+#include "blastsim/fdem/rock_fields.hpp"
+#include "blastsim/fdem/rock_types.hpp"
+#include "blastsim/fdem/triangle_kernels.hpp"
+
+#include <cstdint>
+
+namespace blastsim::fdem {
+
+//! Bounding box of triangle t's current nodes.
+struct Box {
+  double lo_x, lo_y, hi_x, hi_y;
+};
+BLAST_HD inline Box triangle_box(const NodeMotion<Access::read>& m, int t) {
+  Box b{1e300, 1e300, -1e300, -1e300};
+  for (int k = 0; k < 3; ++k) {
+    const double x = m.x[3 * t + k], y = m.y[3 * t + k];
+    // min_of / max_of, not fmin / fmax (positions are finite: step() checks the speeds).
+    b.lo_x = min_of(x, b.lo_x), b.lo_y = min_of(y, b.lo_y), b.hi_x = max_of(b.hi_x, x), b.hi_y = max_of(b.hi_y, y);
+  }
+  return b;
+}
+BLAST_HD inline bool boxes_apart(const Box& a, const Box& b, double margin) {
+  return a.lo_x > b.hi_x + margin || b.lo_x > a.hi_x + margin || a.lo_y > b.hi_y + margin || b.lo_y > a.hi_y + margin;
+}
+
+//! Uniform grid of the contact broad phase: cell size and origin, cells along x and y.
+struct ContactGridShape {
+  double cell_size, x0, y0;
+  int nx, ny;
+  //! The cell holding (x, y), clamped to the grid.
+  BLAST_HD void cell_of(double x, double y, int& i, int& j) const {
+    i = static_cast<int>(floor((x - x0) / cell_size));
+    j = static_cast<int>(floor((y - y0) / cell_size));
+    i = i < 0 ? 0 : (i >= nx ? nx - 1 : i);
+    j = j < 0 ? 0 : (j >= ny ? ny - 1 : j);
+  }
+};
+
+//! Centroid of triangle t.
+BLAST_HD inline Vec2 triangle_centroid(const NodeMotion<Access::read>& m, int t) {
+  return {(m.x[3 * t] + m.x[3 * t + 1] + m.x[3 * t + 2]) / 3.0, (m.y[3 * t] + m.y[3 * t + 1] + m.y[3 * t + 2]) / 3.0};
+}
+
+//! Broad phase (Munjiza's uniform grid, sort-by-cell form): for triangle t, the triangles in the 3 x 3 cells
+//! around its centroid's cell whose boxes come within `margin` (the buffer). With `list` null it only counts
+//! them into `count` (first pass); the second pass writes them from offset[t] on, in a fixed order.
+struct NeighbourSearchKernel {
+  NodeMotion<Access::read> nodes;
+  const int *sorted_triangles, *cell_start, *cell_end;
+  const int* offset;  //!< read in the second pass only
+  ContactGridShape grid;
+  double margin;
+  int* count;
+  int* list;
+  BLAST_HD void operator()(index_t ti) const {
+    const int i = static_cast<int>(ti);
+    const Box bi = triangle_box(nodes, i);
+    const Vec2 c = triangle_centroid(nodes, i);
+    int ci, cj;
+    grid.cell_of(c.x, c.y, ci, cj);
+    int m = list ? offset[i] : 0;
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int ii = ci + di, jj = cj + dj;
+        if (ii < 0 || jj < 0 || ii >= grid.nx || jj >= grid.ny) continue;
+        const int cell = jj * grid.nx + ii;
+        for (int s = cell_start[cell]; s < cell_end[cell]; ++s) {
+          const int j = sorted_triangles[s];
+          if (j == i || boxes_apart(bi, triangle_box(nodes, j), margin)) continue;
+          if (list) list[m] = j;
+          ++m;
+        }
+      }
+    if (!list) count[i] = m;
+  }
+};
+
+//! Internal forces of each triangle on its own three nodes (Munjiza 2004, ch. 2; docs/fdem-solver.md), its
+//! Cauchy stress for output, the work of its viscous damping eta D (dissipation), and the pressure loads of
+//! its exposed edges on its nodes (uniform on each edge, one-point rule, half to each node, along the inward
+//! normal; docs/coupling.md). Everything from the positions at the start of the step: the node update that
+//! moves the nodes runs after.
+struct TriangleForceKernel {
+  NodeMotion<Access::read> nodes;
+  TriangleParams params;
+  EdgeState<Access::read> edges;  //!< exposed, pressure
+  NodeForces<Access::read_write> forces;  //!< writes triangle_* and pressure_*
+  TriangleState<Access::read_write> state;
+  double lambda, mu, pressure_scale, dt;
+  BLAST_HD void operator()(index_t ti) const {
+    const int t = static_cast<int>(ti);
+    Vec2 p[3], v[3];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = nodes.position(3 * t + k);
+      v[k] = nodes.velocity(3 * t + k);
+    }
+    const Mat2 inv_F0 = params.inv_f0[t];
+    const Mat2 FX = edge_matrix(p[0], p[1], p[2]);
+    const Mat2 LX = edge_matrix(v[0], v[1], v[2]);
+    const double eta = params.eta[t];
+    const Mat2 T = triangle_stress(inv_F0, FX, LX, lambda, mu, eta);
+    Vec2 f[3];
+    triangle_nodal_forces(T, p[0], p[1], p[2], f);
+    for (int k = 0; k < 3; ++k) {
+      forces.triangle_x[3 * t + k] = f[k].x;
+      forces.triangle_y[3 * t + k] = f[k].y;
+    }
+    state.stress[t] = {T.a, T.b, T.d};
+    Vec2 fp[3] = {{0, 0}, {0, 0}, {0, 0}};
+    for (int e = 0; e < 3; ++e) {
+      const int s = 3 * t + e;
+      const double pe = edges.exposed[s] ? pressure_scale * edges.pressure[s] : 0.0;
+      if (pe == 0.0) continue;
+      const int e1 = (e + 1) % 3;
+      const Vec2 n = edge_outward_normal(p[e], p[e1]);
+      const Vec2 half{-0.5 * pe * n.x, -0.5 * pe * n.y};
+      fp[e] = {fp[e].x + half.x, fp[e].y + half.y};
+      fp[e1] = {fp[e1].x + half.x, fp[e1].y + half.y};
+    }
+    for (int k = 0; k < 3; ++k) {
+      forces.pressure_x[3 * t + k] = fp[k].x;
+      forces.pressure_y[3 * t + k] = fp[k].y;
+    }
+    if (eta > 0) {  // dissipation rate A eta D:D
+      const Mat2 L = LX * FX.inverse();
+      const double dxy = 0.5 * (L.b + L.c);
+      const double area = 0.5 * FX.det();
+      state.dissipation[t].damping += area * eta * (L.a * L.a + L.d * L.d + 2.0 * dxy * dxy) * dt;
+    }
+  }
+};
+
+//! Cohesive joints (Munjiza 2004, ch. 7; docs/fdem-solver.md): opening and slip at the edge's two ends and
+//! middle (weights 1/6, 2/3, 1/6 of the initial length), the joint law with irreversible damage, and the
+//! forces on the four nodes, written into the two edge slots the joint joins. A joint is broken once two of
+//! its three points reach damage 1; its faces then become exposed edges and carry no cohesion.
+struct JointForceKernel {
+  NodeMotion<Access::read> nodes;
+  JointParams params;
+  JointState<Access::read_write> state;
+  EdgeState<Access::read_write> edges;  //!< writes joint_force, and exposed when the joint breaks
+  BLAST_HD void operator()(index_t ji) const {
+    const int j = static_cast<int>(ji);
+    const JointNodes jn = params.nodes[j];
+    const int a0 = jn.a0, a1 = jn.a1, b0 = jn.b0, b1 = jn.b1;
+    SlotForce& fa = edges.joint_force[a0];  // slot of face A: its first node is a0, its second a1
+    SlotForce& fb = edges.joint_force[b0];  // slot of face B: b0, then b1
+    if (state.broken[j]) {
+      fa = fb = SlotForce{{0.0, 0.0}, {0.0, 0.0}};
+      return;
+    }
+    const JointStrength strength = params.strength[j];
+    const double length0 = params.length[j];
+    const Vec2 pa0 = nodes.position(a0), pa1 = nodes.position(a1);
+    const Vec2 pb0 = nodes.position(b0), pb1 = nodes.position(b1);
+    // Mean direction of the two faces (both run a0 -> a1), and the normal pointing out of face A.
+    Vec2 t{pa1.x - pa0.x + pb0.x - pb1.x, pa1.y - pa0.y + pb0.y - pb1.y};
+    const double tl = sqrt(t.x * t.x + t.y * t.y);
+    t = {t.x / tl, t.y / tl};
+    const Vec2 n{t.y, -t.x};
+    const double xi[kJointPoints] = {0.0, 0.5, 1.0};
+    const double w[kJointPoints] = {length0 / 6.0, 4.0 * length0 / 6.0, length0 / 6.0};
+    Vec2 f_a0{0, 0}, f_a1{0, 0};  // loads on face A's nodes; face B gets the opposite at b1, b0
+    int broken_points = 0;
+    JointPointDamage& damage = state.damage[j];
+    JointPointValues& separation = state.separation[j];
+    JointPointValues& traction = state.traction[j];
+    for (int q = 0; q < kJointPoints; ++q) {
+      const Vec2 xa{pa0.x + xi[q] * (pa1.x - pa0.x), pa0.y + xi[q] * (pa1.y - pa0.y)};
+      const Vec2 xb{pb1.x + xi[q] * (pb0.x - pb1.x), pb1.y + xi[q] * (pb0.y - pb1.y)};
+      const Vec2 d{xb.x - xa.x, xb.y - xa.y};
+      const double o = d.x * n.x + d.y * n.y, s = d.x * t.x + d.y * t.y;
+      const JointTraction tr = joint_traction(o, s, strength, damage.point[q]);
+      damage.point[q] = tr.damage;
+      separation.normal[q] = o;
+      separation.shear[q] = s;
+      traction.normal[q] = tr.normal;
+      traction.shear[q] = tr.shear;
+      if (tr.damage >= 1.0) ++broken_points;
+      // Face A is pulled towards B by tension and dragged along the slip by shear.
+      const Vec2 load{(tr.normal * n.x + tr.shear * t.x) * w[q], (tr.normal * n.y + tr.shear * t.y) * w[q]};
+      f_a0 = {f_a0.x + (1.0 - xi[q]) * load.x, f_a0.y + (1.0 - xi[q]) * load.y};
+      f_a1 = {f_a1.x + xi[q] * load.x, f_a1.y + xi[q] * load.y};
+    }
+    if (broken_points >= 2) {
+      state.broken[j] = 1;
+      edges.exposed[a0] = kEdgeCrackFace;
+      edges.exposed[b0] = kEdgeCrackFace;
+      fa = fb = SlotForce{{0.0, 0.0}, {0.0, 0.0}};
+      return;
+    }
+    fa = SlotForce{f_a0, f_a1};
+    // b0 sits opposite a1 and b1 opposite a0.
+    fb = SlotForce{{-f_a1.x, -f_a1.y}, {-f_a0.x, -f_a0.y}};
+  }
+};
+
+//! Secant estimate of the elastic energy [J/m] an intact joint still holds: half traction times separation,
+//! summed over its three points with their weights (0 for a broken joint).
+BLAST_HD inline double joint_stored_energy(const JointParams& params, const JointState<Access::read>& state, int j) {
+  if (state.broken[j]) return 0.0;
+  const double h = params.length[j];
+  const double w[kJointPoints] = {h / 6.0, 4.0 * h / 6.0, h / 6.0};
+  const JointPointValues& tr = state.traction[j];
+  const JointPointValues& sep = state.separation[j];
+  double sum = 0;
+  for (int q = 0; q < kJointPoints; ++q) sum += 0.5 * w[q] * (tr.normal[q] * sep.normal[q] + tr.shear[q] * sep.shear[q]);
+  return sum;
+}
+
+//! Contact pairs from the broad phase's candidate lists, which are symmetric (j is in i's list exactly when i
+//! is in j's: same cells, same box test). Each unordered pair {i, j} is numbered once, as (i, j) with i < j,
+//! triangle by triangle: pair_offset[i] + the rank of j among i's candidates above i. First pass: how many
+//! pairs each triangle leads.
+struct PairCountKernel {
+  const int *offset, *list;
+  int* count;
+  BLAST_HD void operator()(index_t ti) const {
+    const int i = static_cast<int>(ti);
+    int c = 0;
+    for (int s = offset[i]; s < offset[i + 1]; ++s) c += list[s] > i ? 1 : 0;
+    count[i] = c;
+  }
+};
+
+//! Second pass: the pair of every candidate slot (slot_pair), and each pair's triangles (pair).
+//! A slot whose partner's list lacks it (which symmetric lists never do) gets -1; the caller checks.
+struct PairIndexKernel {
+  const int *offset, *list, *pair_offset;
+  int* slot_pair;
+  TrianglePair* pair;
+  BLAST_HD void operator()(index_t ti) const {
+    const int i = static_cast<int>(ti);
+    int k = 0;
+    for (int s = offset[i]; s < offset[i + 1]; ++s) {
+      const int j = list[s];
+      if (j > i) {
+        const int p = pair_offset[i] + k++;
+        slot_pair[s] = p;
+        pair[p] = {i, j};
+        continue;
+      }
+      int rank = 0, found = -1;
+      for (int t = offset[j]; t < offset[j + 1] && found < 0; ++t) {
+        if (list[t] == i) found = pair_offset[j] + rank;
+        rank += list[t] > j ? 1 : 0;
+      }
+      slot_pair[s] = found;
+    }
+  }
+};
+
+//! 1 for a candidate slot that PairIndexKernel found no pair for (summed to check the lists' symmetry).
+struct UnmatchedSlot {
+  const int* slot_pair;
+  BLAST_HD double operator()(index_t s) const { return slot_pair[s] < 0 ? 1.0 : 0.0; }
+};
+
+//! Contact of one pair (i, j), i < j (Munjiza's distributed potential, contact_kernels.hpp): the loads on
+//! both triangles' nodes from all six edge-against-target evaluations, each evaluated once. Pairs joined by
+//! an intact joint or apart (bounding boxes, then separating axes) are skipped. Pairs that only share a
+//! vertex are tested like any other (Munjiza): their corners overlap by the joints' give, and the small
+//! contact force that makes is part of the model (docs/fdem-solver.md). Writes the pair's touch flag and,
+//! when it touches, its loads on i's and j's nodes and its friction power.
+struct ContactPairKernel {
+  NodeMotion<Access::read> nodes;
+  NodeParams node_params;  //!< mass
+  EdgeParams edge_params;  //!< neighbour, joint
+  const std::uint8_t* joint_broken;
+  const TrianglePair* pair;
+  std::uint8_t* touch;
+  PairLoad* load;
+  double penalty, friction, dt;
+  BLAST_HD bool joined(int i, int j) const {
+    for (int e = 0; e < 3; ++e)
+      if (edge_params.neighbour[3 * i + e] == j) {
+        const int joint = edge_params.joint[3 * i + e];
+        return joint >= 0 && !joint_broken[joint];
+      }
+    return false;
+  }
+  BLAST_HD void operator()(index_t p) const {
+    const int i = pair[p].i, j = pair[p].j;
+    touch[p] = 0;
+    if (joined(i, j) || boxes_apart(triangle_box(nodes, i), triangle_box(nodes, j), 0.0)) return;
+    Vec2 x[2][3];
+    nodes.triangle(i, x[0]);
+    nodes.triangle(j, x[1]);
+    if (!triangles_overlap(x[0], x[1])) return;
+    Vec2 v[2][3];
+    double m[2][3], mt[2] = {0, 0};
+    BLAST_UNROLL
+    for (int side = 0; side < 2; ++side)
+      BLAST_UNROLL
+      for (int k = 0; k < 3; ++k) {
+        const int n = 3 * (side == 0 ? i : j) + k;
+        v[side][k] = nodes.velocity(n);
+        m[side][k] = node_params.mass[n];
+        mt[side] += m[side][k];
+      }
+    Vec2 f[2][3] = {{{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
+    double friction_power = 0;
+    bool touching = false;
+    BLAST_UNROLL
+    for (int c = 0; c < 2; ++c) {  // contactor c's edges against target 1 - c
+      const int t = 1 - c;
+      BLAST_UNROLL
+      for (int e = 0; e < 3; ++e) {
+        const int e1 = (e + 1) % 3;
+        const EdgeContactLoad l = edge_against_target(x[c][e], x[c][e1], x[t], v[c][e], v[c][e1], v[t],
+                                                      m[c][e] + m[c][e1], mt[t], penalty, friction, dt);
+        if (!l.touching) continue;
+        touching = true;
+        f[c][e] = {f[c][e].x + l.edge[0].x, f[c][e].y + l.edge[0].y};
+        f[c][e1] = {f[c][e1].x + l.edge[1].x, f[c][e1].y + l.edge[1].y};
+        BLAST_UNROLL
+        for (int k = 0; k < 3; ++k) f[t][k] = {f[t][k].x + l.target[k].x, f[t][k].y + l.target[k].y};
+        friction_power += l.friction_power;
+      }
+    }
+    if (!touching) return;
+    touch[p] = 1;
+    PairLoad& out = load[p];
+    BLAST_UNROLL
+    for (int k = 0; k < 3; ++k) out.on_i[k] = f[0][k], out.on_j[k] = f[1][k];
+    out.friction_power = friction_power;
+  }
+};
+
+//! ContactPairKernel over the pairs in 64 interleaved blocks (CPU load balance: see RockSolver::contact_forces):
+//! launch index q visits pair (q mod 64) x block_length + q / 64; indices past the last pair do nothing.
+struct InterleavedPairs {
+  static constexpr index_t blocks = 64;
+  ContactPairKernel pair;
+  index_t pairs;
+  index_t block_length;  //!< block_length_for(pairs)
+  static index_t block_length_for(index_t n) { return (n + blocks - 1) / blocks; }
+  index_t launch_size() const { return blocks * block_length; }
+  BLAST_HD void operator()(index_t q) const {
+    const index_t p = (q % blocks) * block_length + q / blocks;
+    if (p < pairs) pair(p);
+  }
+};
+
+//! Contact force on each triangle's own nodes: the sum, in the fixed order of its candidate list, of its
+//! side of every touching pair (a gather: no two threads write the same node, the same bytes every run).
+//! The friction dissipation of a pair is booked on its first triangle.
+struct ContactGatherKernel {
+  const int* neighbour_offset;
+  ContactPairs<Access::read> pairs;  //!< slot_pair, pair, touch, load
+  NodeForces<Access::read_write> forces;  //!< writes contact_*
+  TriangleState<Access::read_write> state;  //!< adds to dissipation.friction
+  double dt;
+  BLAST_HD void operator()(index_t ti) const {
+    const int i = static_cast<int>(ti);
+    Vec2 f[3] = {{0, 0}, {0, 0}, {0, 0}};
+    double friction_power = 0;
+    for (int s = neighbour_offset[i]; s < neighbour_offset[i + 1]; ++s) {
+      const int p = pairs.slot_pair[s];
+      if (!pairs.touch[p]) continue;
+      const bool first = pairs.pair[p].i == i;
+      const PairLoad& in = pairs.load[p];
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 l = first ? in.on_i[k] : in.on_j[k];
+        f[k] = {f[k].x + l.x, f[k].y + l.y};
+      }
+      if (first) friction_power += in.friction_power;
+    }
+    for (int k = 0; k < 3; ++k) {
+      forces.contact_x[3 * i + k] = f[k].x;
+      forces.contact_y[3 * i + k] = f[k].y;
+    }
+    state.dissipation[i].friction += friction_power * dt;
+  }
+};
+
+//! Node update (symplectic Euler, docs/fdem-solver.md): gathers the node's forces (its triangle, the joints
+//! on its two edges, contact, pressure on its triangle's exposed edges, gravity), applies prescribed
+//! velocities, moves the node, and accumulates the work of each kind of force by the trapezoid rule: the
+//! force at x_n works over half of the previous displacement and half of the next one, so linear springs'
+//! work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m every step).
+struct NodeUpdateKernel {
+  NodeParams params;  //!< mass
+  NodeLoads loads;
+  NodeForces<Access::read> forces;
+  const SlotForce* joint_force;
+  NodeMotion<Access::read_write> nodes;
+  NodeLedger<Access::read_write> ledger;
+  double gx, gy, dt, dt_prev;
+  BLAST_HD void operator()(index_t ni) const {
+    const int n = static_cast<int>(ni);
+    const SlotForce& starting = joint_force[n];                // the slot that starts at n (n is its first node)
+    const SlotForce& ending = joint_force[slot_ending_at(n)];  // the slot that ends at n
+    const double m = params.mass[n];
+    const Vec2 f_joint{starting.first.x + ending.second.x, starting.first.y + ending.second.y};
+    const Vec2 f_grav{m * gx, m * gy}, f_pres{forces.pressure_x[n], forces.pressure_y[n]};
+    const Vec2 f_ext{f_grav.x + f_pres.x, f_grav.y + f_pres.y};
+    const Vec2 f_con{forces.contact_x[n], forces.contact_y[n]};
+    const Vec2 f{forces.triangle_x[n] + f_joint.x + f_con.x + f_ext.x, forces.triangle_y[n] + f_joint.y + f_con.y + f_ext.y};
+    const double vx = nodes.vx[n], vy = nodes.vy[n];
+    Vec2 v{vx + f.x / m * dt, vy + f.y / m * dt};
+    Vec2 support{0, 0};
+    const std::uint8_t cons = loads.constraint[n];
+    const Vec2 vp = loads.v_prescribed[n];
+    if (cons & 1) {
+      support.x = m * (vp.x - vx) / dt - f.x;
+      v.x = vp.x;
+    }
+    if (cons & 2) {
+      support.y = m * (vp.y - vy) / dt - f.y;
+      v.y = vp.y;
+    }
+    const Vec2 d{0.5 * (vx * dt_prev + v.x * dt), 0.5 * (vy * dt_prev + v.y * dt)};
+    ledger.support[n] = support;
+    nodes.vx[n] = v.x;
+    nodes.vy[n] = v.y;
+    nodes.x[n] += v.x * dt;
+    nodes.y[n] += v.y * dt;
+    NodeWork& w = ledger.work[n];
+    w.pressure += f_pres.x * d.x + f_pres.y * d.y;
+    w.joint -= f_joint.x * d.x + f_joint.y * d.y;
+    w.contact -= f_con.x * d.x + f_con.y * d.y;
+    w.support += support.x * d.x + support.y * d.y;
+    w.gravity += f_grav.x * d.x + f_grav.y * d.y;
+  }
+};
+
+}  // namespace blastsim::fdem

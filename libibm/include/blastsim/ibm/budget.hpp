@@ -1,0 +1,32 @@
+//! \file budget.hpp
+//! \brief The energy budget of a coupled gas-rock run (docs/validation.md, S4): what the gas and the rock hold
+//! and did, against the initial energy and what came in from outside.
+#pragma once
+
+#include "blastsim/cip/gas_solver.hpp"
+#include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/ibm/coupler.hpp"
+
+namespace blastsim::ibm {
+
+//! Every term of the budget at one moment, per unit thickness [J/m] (forces [N/m]).
+struct CoupledBudget {
+  cip::GasTotals gas;             //!< gas in the active cells
+  double gas_energy_out = 0;      //!< carried out through the grid's outer boundary since the start
+  fdem::RockEnergies rock;        //!< the rock's energies and work
+  CouplingDiagnostics coupling;   //!< interface force, gas work on the rock, cell-transition ledger
+  double other_external_work = 0;  //!< work on the rock of loads other than the gas (supports, gravity)
+  double immersed_face_work = 0;  //!< energy the rock's moving faces gave the gas (GasSolver::immersed_face_work)
+  //! (gas energy + gas out + rock kinetic + strain + joint work + contact work + damping) - (initial energy +
+  //! other external work + energy the cell transitions created + immersed-face work): zero for an exact budget.
+  double residual = 0;
+};
+
+//! The energy a budget starts from: gas total energy plus rock kinetic and strain energy [J/m].
+double initial_energy(const cip::GasSolver& gas, const fdem::RockSolver& rock);
+
+//! The budget now, against `initial` (initial_energy() at the start of the run).
+CoupledBudget coupled_budget(const cip::GasSolver& gas, const fdem::RockSolver& rock, const GasRockCoupler& coupler,
+                             double initial);
+
+}  // namespace blastsim::ibm

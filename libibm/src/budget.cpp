@@ -1,0 +1,28 @@
+//! \file budget.cpp
+//! \brief The coupled energy budget from the solvers' and the coupler's totals (host reductions).
+#include "blastsim/ibm/budget.hpp"
+
+namespace blastsim::ibm {
+
+double initial_energy(const cip::GasSolver& gas, const fdem::RockSolver& rock) {
+  const fdem::RockEnergies e = rock.energies();
+  return gas.totals().total_energy() + e.kinetic + e.strain;
+}
+
+CoupledBudget coupled_budget(const cip::GasSolver& gas, const fdem::RockSolver& rock, const GasRockCoupler& coupler,
+                             double initial) {
+  CoupledBudget b;
+  b.gas = gas.totals();
+  b.rock = rock.energies();
+  b.coupling = coupler.diagnostics();
+  b.gas_energy_out = gas.boundary_outflow().energy;
+  b.other_external_work = b.rock.external_work - b.rock.pressure_work;
+  const fdem::RockEnergies& e = b.rock;
+  const double now = b.gas.total_energy() + b.gas_energy_out + e.kinetic + e.strain + e.joint_work + e.contact_work +
+                     e.damping_dissipated;
+  b.immersed_face_work = gas.immersed_face_work();
+  b.residual = now - (initial + b.other_external_work + b.coupling.transitions.energy_created + b.immersed_face_work);
+  return b;
+}
+
+}  // namespace blastsim::ibm
