@@ -5,7 +5,7 @@
 # Usage: scripts/device-deps.sh [PACKAGE...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-packages=(libeigen3-dev libfmt-dev libfmt9 catch2 libtomlplusplus-dev libtomlplusplus3 libcli11-dev "$@")
+packages=(libeigen3-dev libfmt-dev libfmt9 catch2 libtomlplusplus-dev libtomlplusplus3 libcli11-dev zlib1g-dev "$@")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 if ! (cd "$work" && apt-get download "${packages[@]}" >/dev/null 2>&1); then

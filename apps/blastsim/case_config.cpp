@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 namespace blastsim::app {
 
 bool GasRegion::contains(double x, double y) const {
@@ -54,7 +56,10 @@ cip::BoundaryKind read_boundary(TableReader& t, const char* side) {
 
 void read_gas_sections(TableReader& root, CaseConfig& c) {
   TableReader domain = root.table("domain", true);
-  const long long nx = domain.integer("nx", "cells", 3), ny = domain.integer("ny", "cells", 3);
+  const long long nx = domain.integer("nx", "cells", 3, {}, 1000000), ny = domain.integer("ny", "cells", 3, {}, 1000000);
+  // The gas arrays hold about 45 doubles a cell (state and derivatives twice, work arrays, coupling).
+  check_memory_need(fmt::format("domain.nx x domain.ny = {} x {} cells", nx, ny),
+                    45.0 * 8.0 * static_cast<double>(nx + 5) * static_cast<double>(ny + 5));
   const double x0 = domain.number("x_min", "m", Range::any()), x1 = domain.number("x_max", "m", Range::above(x0));
   const double y0 = domain.number("y_min", "m", Range::any()), y1 = domain.number("y_max", "m", Range::above(y0));
   domain.finish();
@@ -62,7 +67,7 @@ void read_gas_sections(TableReader& root, CaseConfig& c) {
 
   TableReader gas = root.table("gas", true);
   c.eos = cip::EquationOfState::ideal(gas.number("gamma", "", Range::above(1.0), 1.4));
-  c.courant = gas.number("courant", "", Range::half_open(0.0, 1.0), 0.1);
+  c.courant = gas.number("courant", "", Range{1e-6, 1.0, false, false}, 0.1);  // below 1e-6 a run never ends
   c.solver.transport = gas.text("transport", {"conservative", "paper"}, std::string("conservative")) == "paper"
                            ? cip::Transport::paper
                            : cip::Transport::conservative;
@@ -108,7 +113,7 @@ void read_gas_sections(TableReader& root, CaseConfig& c) {
     l.name = p.text("name", {});
     l.start = p.pair("start", "m");
     l.end = p.pair("end", "m");
-    l.points = static_cast<int>(p.integer("points", "", 2, 101));
+    l.points = static_cast<int>(p.integer("points", "", 2, 101, 1000000));
     l.times = p.number_list("times", "s", Range::non_negative());
     p.finish();
     c.line_probes.push_back(l);
@@ -122,8 +127,39 @@ void read_gas_sections(TableReader& root, CaseConfig& c) {
     c.point_probes.push_back(q);
   }
   probe.finish();
-  for (const LineProbe& l : c.line_probes) check_output_name("probe.line", l.name);
-  for (const PointProbe& q : c.point_probes) check_output_name("probe.point", q.name);
+  std::vector<std::string> lines, points;
+  for (const LineProbe& l : c.line_probes) check_output_name("probe.line", l.name), lines.push_back(l.name);
+  for (const PointProbe& q : c.point_probes) check_output_name("probe.point", q.name), points.push_back(q.name);
+  check_unique_names("probe.line", lines);
+  check_unique_names("probe.point", points);
+}
+
+void check_gas_intervals(const CaseConfig& c) {
+  check_interval("output.interval", c.output_interval, c.end_time, true);
+  for (size_t k = 0; k < c.point_probes.size(); ++k)
+    check_interval(fmt::format("probe.point.{}.interval", k), c.point_probes[k].interval, c.end_time, false);
+}
+
+void check_unique_names(const std::string& kind, const std::vector<std::string>& names) {
+  for (size_t a = 0; a < names.size(); ++a)
+    for (size_t b = a + 1; b < names.size(); ++b)
+      if (names[a] == names[b])
+        throw InputError(fmt::format("{}.{}.name = \"{}\": the same name as {}.{}; each needs its own (it names its "
+                                     "output)", kind, b, names[b], kind, a));
+}
+
+void check_interval(const std::string& key, double interval, double end_time, bool zero_allowed) {
+  if (zero_allowed && interval == 0) return;
+  if (!(interval >= 1e-9 * end_time))
+    throw InputError(fmt::format("{} = {:g} s: must be at least 1e-9 x time.end = {:g} s{} (at most 1e9 samples a run)",
+                                 key, interval, 1e-9 * end_time, zero_allowed ? ", or 0" : ""));
+}
+
+void check_memory_need(const std::string& what, double bytes) {
+  const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (memory > 0 && bytes > memory)
+    throw InputError(fmt::format("{}: needs about {:.3g} GB of memory, this machine has {:.3g} GB", what, bytes / 1e9,
+                                 memory / 1e9));
 }
 
 void check_output_name(const std::string& kind, const std::string& name) {
@@ -145,6 +181,7 @@ CaseConfig read_case(const toml::table& input) {
   assign_output_basics(read_output_basics(out, 1), c);
   c.drift_warning = out.number("drift_warning", "", Range::positive(), 0.01);
   out.finish();
+  check_gas_intervals(c);
 
   root.finish();
   return c;
@@ -155,6 +192,9 @@ TimeKeys read_time_keys(TableReader& root, CaseKind kind) {
   TableReader time = root.table("time", true);
   k.end = time.number("end", "s", Range::positive());
   k.dt = time.optional_number("dt", "s", Range::positive());
+  if (k.dt && !(*k.dt >= 1e-9 * k.end))
+    throw InputError(fmt::format("time.dt = {:g} s: must be at least 1e-9 x time.end = {:g} s (at most 1e9 steps a run)",
+                                 *k.dt, 1e-9 * k.end));
   k.max_steps = time.integer("max_steps", "", 0, 0);
   if (kind != CaseKind::gas) k.step_fraction = time.number("step_fraction", "", Range::half_open(0.0, 1.0), 0.9);
   if (kind == CaseKind::coupled) k.rock_subcycling = time.boolean("rock_subcycling", false);

@@ -76,4 +76,18 @@ void read_rock_section(TableReader& root, RockCaseConfig& c);  //!< [rock]
 //! Throws InputError unless `name` (used in file names) is letters, digits, '_' and '-'.
 void check_output_name(const std::string& kind, const std::string& name);
 
+//! check_interval() of output.interval and every probe.point interval of a gas (or coupled) case.
+void check_gas_intervals(const CaseConfig& c);
+
+//! InputError when the output names of one kind repeat (two probes would write one file): `kind` is the
+//! table ("probe.point"), `names` in input order.
+void check_unique_names(const std::string& kind, const std::vector<std::string>& names);
+
+//! InputError when a sampling interval [s] would give more than 1e9 samples in the run (or could not advance
+//! the time): `key` = `interval` must be 0 (when `zero_allowed`) or at least 1e-9 x time.end.
+void check_interval(const std::string& key, double interval, double end_time, bool zero_allowed);
+
+//! InputError when `bytes`, the memory a case needs for what `what` names, exceeds the machine's memory.
+void check_memory_need(const std::string& what, double bytes);
+
 }  // namespace blastsim::app

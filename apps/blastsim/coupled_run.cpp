@@ -32,6 +32,7 @@ class CouplingSeries {
   }
   void read_checkpoint(CheckpointReader& r) {
     initial_ = r.value<double>("out.coupling.initial");
+    if (!std::isfinite(initial_) || initial_ <= 0) r.fail("out.coupling.initial", "not a finite energy > 0");
     file_.truncate_to(r.value<std::uint64_t>("out.coupling.csv_size"));
   }
 
@@ -90,7 +91,7 @@ class BlastholeFiles {
 
   void sample() {
     if (!monitor_ || gas_.time() < next_ - 1e-12 * c_.gas.end_time) return;
-    while (next_ <= gas_.time() + 1e-12 * c_.gas.end_time) next_ += c_.blasthole->interval;
+    advance_schedule(next_, c_.blasthole->interval, gas_.time() + 1e-12 * c_.gas.end_time);
     const ibm::BlastholeSample s = monitor_->sample(gas_, rock_);
     file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e}", s.time,
                            s.wall_pressure_mean, s.wall_pressure_min, s.wall_pressure_max, s.wall_stress_mean,
@@ -130,6 +131,7 @@ class BlastholeFiles {
   }
   void read_checkpoint(CheckpointReader& r) {
     next_ = r.value<double>("out.blasthole.next");
+    if (!std::isfinite(next_)) r.fail("out.blasthole.next", "not finite");
     const ibm::BlastholeEvents ev = r.value<ibm::BlastholeEvents>("out.blasthole.events");
     const std::uint64_t size = r.value<std::uint64_t>("out.blasthole.csv_size");
     if (!monitor_) return;
@@ -252,9 +254,8 @@ class CoupledRunOutputs : public RunOutputs {
     w.value("run.warned", static_cast<int>(warned_));
     w.commit();
   }
-  void read_checkpoint() {
-    CheckpointReader r(checkpoint_path_);
-    check_same_case(r.text("case"), checkpoint_case_text(c_), checkpoint_path_);
+  //! Restores everything from a checkpoint accepted by open_checkpoint().
+  void read_checkpoint(CheckpointReader& r) {
     gas_.read_checkpoint(r);
     rock_.read_checkpoint(r);
     coupler_.read_checkpoint(r);
@@ -263,27 +264,39 @@ class CoupledRunOutputs : public RunOutputs {
     series_.read_checkpoint(r);
     blasthole_.read_checkpoint(r);
     warned_ = r.value<int>("run.warned") != 0;
+    r.finish();
     log_ << fmt::format("restarted from {} at step {} (t = {:.6e} s)\n", checkpoint_path_, gas_.steps(), gas_.time());
   }
 
   double next_event(double t) const override { return gas_out_.next_event(t); }
+  //! What the schedule asks for, then the checkpoint with a scheduled snapshot, then (at the end) the snapshot
+  //! and the CSV rows that close the run. The checkpoint comes before those closing outputs, so a restart
+  //! with a later time.end continues exactly as a run made with that end time from the start.
   void after_step(double dt, bool last) override {
-    const CaseConfig& gc = c_.gas;
-    const bool snapshot = gas_out_.write_due(dt, last);
+    const bool snapshot = gas_out_.write_due(dt, false);
     if (snapshot) rock_out_.snapshot();
-    if (gas_.steps() % gc.monitor_interval == 0 || last) {
-      rock_out_.monitor();
-      const double drift = series_.write();
-      if (!warned_ && std::fabs(drift) > gc.drift_warning) {
-        warned_ = true;
-        log_ << fmt::format("warning: the gas + rock energy budget is off by {:+.3e} of the initial energy (> "
-                            "output.drift_warning = {:g}) at step {} (t = {:.6e} s); coupling_series.csv has the history\n",
-                            drift, gc.drift_warning, gas_.steps(), gas_.time());
-      }
-    }
+    const bool row = gas_.steps() % c_.gas.monitor_interval == 0;
+    if (row) write_rows();
     blasthole_.sample();
     if (snapshot) blasthole_.write_summary(rock_.energies());
     if (snapshot && c_.checkpoint) write_checkpoint();
+    if (!last) return;
+    gas_out_.write_end(dt, snapshot);
+    if (!snapshot) rock_out_.snapshot();
+    if (!row) write_rows();
+    if (!snapshot) blasthole_.write_summary(rock_.energies());
+  }
+  //! One row of rock_series.csv and coupling_series.csv, and the budget warning.
+  void write_rows() {
+    const CaseConfig& gc = c_.gas;
+    rock_out_.monitor();
+    const double drift = series_.write();
+    if (!warned_ && std::fabs(drift) > gc.drift_warning) {
+      warned_ = true;
+      log_ << fmt::format("warning: the gas + rock energy budget is off by {:+.3e} of the initial energy (> "
+                          "output.drift_warning = {:g}) at step {} (t = {:.6e} s); coupling_series.csv has the history\n",
+                          drift, gc.drift_warning, gas_.steps(), gas_.time());
+    }
   }
   void finish() override {
     const fdem::RockEnergies e = rock_.energies();
@@ -325,8 +338,15 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
                      "stable step {:.4g} s\n",
                      gc.grid.nx, gc.grid.ny, gc.grid.dx, gc.grid.dy, coupler.inactive_cells(), rock.triangle_count(),
                      rock.joint_count(), rock.stable_dt());
+  // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
+  const std::string checkpoint_path = (std::filesystem::path(gc.output_directory) / "checkpoint.bin").string();
+  std::optional<CheckpointReader> reader;
+  if (resume) {
+    reader.emplace(checkpoint_path);
+    check_same_case(reader->text("case"), checkpoint_case_text(c), checkpoint_path);
+  }
   CoupledRunOutputs outputs(c, gas, rock, coupler, model, log, resume);
-  if (resume) outputs.read_checkpoint();
+  if (resume) outputs.read_checkpoint(*reader);
   else outputs.start();
   CoupledStepper stepper(c, gas, rock, coupler, rock_dt);
   run_loop(stepper, outputs, RunControl{gc.end_time, gc.max_steps, gc.progress_interval}, log, options);

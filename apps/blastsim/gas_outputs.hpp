@@ -81,6 +81,9 @@ class GasOutputs {
   }
   void read_checkpoint(CheckpointReader& r) {
     const std::array<double, 5> k = r.value<std::array<double, 5>>("out.gas.counters");
+    if (!std::isfinite(k[0]) || !(k[1] >= 0 && k[1] <= 1e9 && k[1] == std::floor(k[1])) ||
+        !(k[4] >= 0 && k[4] <= static_cast<double>(c_.output_times.size()) && k[4] == std::floor(k[4])))
+      r.fail("out.gas.counters", "the output schedule is out of range");
     next_snapshot_ = k[0], snapshot_index_ = static_cast<int>(k[1]), mass_warned_ = k[2] != 0, energy_warned_ = k[3] != 0;
     next_time_ = static_cast<size_t>(k[4]);
     initial_ = r.value<cip::GasTotals>("out.gas.initial");
@@ -92,6 +95,8 @@ class GasOutputs {
       for (size_t m = 0; m < l.size(); ++m) l[m] = at < done.size() && done[at++];
     if (next_point_.size() != point_files_.size() || sizes.size() != point_files_.size() + 1 || at != done.size())
       throw InputError("checkpoint " + r.path() + ": its probes differ from this case's");
+    for (double t : next_point_)
+      if (!std::isfinite(t)) r.fail("out.gas.next_point", "a probe time is not finite");
     totals_.truncate_to(sizes[0]);
     for (size_t p = 0; p < point_files_.size(); ++p) point_files_[p].truncate_to(sizes[p + 1]);
     read_pvd_checkpoint(r, "out.gas.pvd", pvd_);
@@ -117,7 +122,7 @@ class GasOutputs {
     if (snapshot_due) {
       snapshot();
       if (c_.output_interval > 0)
-        while (next_snapshot_ <= t + tol) next_snapshot_ += c_.output_interval;
+        advance_schedule(next_snapshot_, c_.output_interval, t + tol);
       while (next_time_ < c_.output_times.size() && c_.output_times[next_time_] <= t + tol) ++next_time_;
     }
     for (size_t k = 0; k < c_.line_probes.size(); ++k)
@@ -129,6 +134,13 @@ class GasOutputs {
     sample_points(t);
     if (solver_.steps() % c_.monitor_interval == 0 || force_snapshot) monitor(dt);
     return snapshot_due;
+  }
+
+  //! The end of a run, after write_due(dt, false) wrote what the schedule asked for: the snapshot (unless
+  //! that call wrote one) and the monitor row (unless the step was a monitor step) that close every run.
+  void write_end(double dt, bool snapshot_written) {
+    if (!snapshot_written) snapshot();
+    if (solver_.steps() % c_.monitor_interval != 0) monitor(dt);
   }
 
  private:
@@ -158,7 +170,7 @@ class GasOutputs {
       if (t >= next_point_[k] - 1e-12 * c_.end_time) {
         pts.push_back(c_.point_probes[k].position);
         which.push_back(k);
-        while (next_point_[k] <= t) next_point_[k] += c_.point_probes[k].interval;
+        advance_schedule(next_point_[k], c_.point_probes[k].interval, t);
       }
     if (pts.empty()) return;
     const std::vector<cip::GasSample> smp = solver_.sample(pts);

@@ -43,7 +43,10 @@ class GasRunOutputs : public RunOutputs {
  public:
   explicit GasRunOutputs(GasOutputs& out) : out_(out) {}
   double next_event(double t) const override { return out_.next_event(t); }
-  void after_step(double dt, bool last) override { out_.write_due(dt, last); }
+  void after_step(double dt, bool last) override {
+    const bool snapshot = out_.write_due(dt, false);
+    if (last) out_.write_end(dt, snapshot);
+  }
   void finish() override {}
 
  private:

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -86,7 +88,7 @@ std::optional<double> TableReader::optional_number(const std::string& key, const
 }
 
 long long TableReader::integer(const std::string& key, const char* unit, long long min_value,
-                               std::optional<long long> fallback) {
+                               std::optional<long long> fallback, long long max_value) {
   const toml::node* n = find(key);
   long long v;
   if (!n) {
@@ -97,8 +99,9 @@ long long TableReader::integer(const std::string& key, const char* unit, long lo
   } else {
     throw InputError(fmt::format("{} must be an integer, got {}", key_path(key), type_name(*n)));
   }
-  if (v < min_value)
-    throw InputError(fmt::format("{} = {}: must be an integer >= {}", key_path(key), v, min_value));
+  if (v < min_value || v > max_value)
+    throw InputError(v < min_value ? fmt::format("{} = {}: must be an integer >= {}", key_path(key), v, min_value)
+                                   : fmt::format("{} = {}: must be an integer <= {}", key_path(key), v, max_value));
   echo_->push_back(fmt::format("{} = {}{}", key_path(key), with_unit(std::to_string(v), unit), n ? "" : "   (default)"));
   return v;
 }
@@ -242,7 +245,10 @@ void apply_override(toml::table& root, const std::string& assignment) {
       if (k + 2 >= parts.size() || parts[k + 1].find_first_not_of("0123456789") != std::string::npos)
         throw InputError(fmt::format("override '{}': {} is an array; give an index ({}.0.key=value)", assignment,
                                      prefix, prefix));
-      const size_t index = std::stoul(parts[k + 1]);
+      // Compare as text first: an index of any length that does not fit is out of range, not an overflow.
+      const std::string& digits = parts[k + 1];
+      const bool fits = digits.size() <= 9;
+      const size_t index = fits ? static_cast<size_t>(std::stoul(digits)) : a->size();
       if (index >= a->size() || !(*a)[index].is_table())
         throw InputError(fmt::format("override '{}': {} has {} entries", assignment, prefix, a->size()));
       t = (*a)[index].as_table();
@@ -256,6 +262,9 @@ void apply_override(toml::table& root, const std::string& assignment) {
 }
 
 toml::table parse_input_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(fmt::format("input file '{}' is a directory; give the case file (TOML)", path));
   try {
     return toml::parse_file(path);
   } catch (const toml::parse_error& e) {

@@ -35,8 +35,9 @@ class TableReader {
 
   double number(const std::string& key, const char* unit, Range range, std::optional<double> fallback = {});
   std::optional<double> optional_number(const std::string& key, const char* unit, Range range);
+  //! An integer in [min_value, max_value] (64-bit; an out-of-range value is refused, never wrapped).
   long long integer(const std::string& key, const char* unit, long long min_value,
-                    std::optional<long long> fallback = {});
+                    std::optional<long long> fallback = {}, long long max_value = (1LL << 62));
   bool boolean(const std::string& key, std::optional<bool> fallback = {});
   std::string text(const std::string& key, const std::vector<std::string>& allowed, std::optional<std::string> fallback = {});
   std::array<double, 2> pair(const std::string& key, const char* unit, std::optional<std::array<double, 2>> fallback = {});

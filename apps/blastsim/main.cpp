@@ -84,9 +84,16 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::cerr << "input error: " << e.what() << "\n";
     return 2;
+  } catch (const OutputError& e) {
+    std::cerr << "output error: " << e.what() << "\n";
+    return 4;
   } catch (const InstabilityError& e) {
     std::cerr << "unstable: " << e.what() << "\n";
     return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "input error: the case needs more memory than this machine could give (std::bad_alloc); use "
+                 "fewer cells (domain.nx, domain.ny) or larger elements (rock.mesh.element_size)\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

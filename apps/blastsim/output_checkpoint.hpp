@@ -6,6 +6,7 @@
 #include "blastsim/core/checkpoint.hpp"
 #include "output_files.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,7 +15,11 @@ namespace blastsim::app {
 
 //! Creates the output folder; returns its path.
 inline std::filesystem::path make_output_dir(const std::string& d) {
-  std::filesystem::create_directories(d);
+  std::error_code ec;
+  std::filesystem::create_directories(d, ec);
+  if (ec || !std::filesystem::is_directory(d))
+    throw OutputError("output.directory = \"" + d + "\": cannot be created (" +
+                      (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
   return d;
 }
 
@@ -33,9 +38,15 @@ inline void read_pvd_checkpoint(CheckpointReader& r, const std::string& name, Pv
   size_t at = 0;
   for (double t : times) {
     const size_t end = files.find('\n', at);
-    e.emplace_back(t, files.substr(at, end - at));
+    if (end == std::string::npos) r.fail(name + ".files", "fewer file names than snapshot times");
+    const std::string file = files.substr(at, end - at);
+    // Plain names of files in the output folder, as the run wrote them.
+    if (file.empty() || file.size() > 255 || file.find_first_of("/\\\"<>&") != std::string::npos || !std::isfinite(t))
+      r.fail(name + ".files", "holds a name that is not a snapshot file of the output folder");
+    e.emplace_back(t, file);
     at = end + 1;
   }
+  if (at != files.size()) r.fail(name + ".files", "more file names than snapshot times");
   pvd.restore(e);
 }
 

@@ -2,9 +2,13 @@
 //! \brief Temporary-name-then-rename file writing and the .pvd series index.
 #include "output_files.hpp"
 
+#include "blastsim/core/error.hpp"
+
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -13,17 +17,18 @@ namespace blastsim::app {
 
 void commit_file(const std::string& tmp_path, const std::string& path) {
   if (std::rename(tmp_path.c_str(), path.c_str()) != 0)
-    throw std::runtime_error(fmt::format("cannot rename '{}' to '{}'", tmp_path, path));
+    throw OutputError(fmt::format("cannot rename '{}' to '{}': {}", tmp_path, path, std::strerror(errno)));
 }
 
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(fmt::format("cannot open '{}' for writing", tmp));
+    if (!out) throw OutputError(fmt::format("cannot open '{}' for writing: {}", tmp, std::strerror(errno)));
     fill(out);
     out.flush();
-    if (!out) throw std::runtime_error(fmt::format("error while writing '{}'", tmp));
+    out.close();
+    if (!out) throw OutputError(fmt::format("error while writing '{}': {}", tmp, std::strerror(errno)));
   }
   commit_file(tmp, path);
 }
@@ -49,15 +54,25 @@ void PvdSeries::write() const {
 }
 
 CsvSeries::CsvSeries(std::string path, const std::string& header, bool resume) : path_(std::move(path)) {
+  if (resume) {  // a restart continues this run's file: it must be there, with this series' header
+    std::ifstream in(path_);
+    std::string first;
+    if (!in || !std::getline(in, first))
+      throw InputError(fmt::format("--restart: {} is missing or empty; a restart continues the outputs of the run "
+                                   "that wrote the checkpoint (start the run anew without --restart)", path_));
+    if (first != header)
+      throw InputError(fmt::format("--restart: {} does not start with this case's header; it belongs to another run",
+                                   path_));
+  }
   out_.open(path_, resume ? std::ios::app : std::ios::trunc);
-  if (!out_) throw std::runtime_error(fmt::format("cannot open '{}' for writing", path_));
+  if (!out_) throw OutputError(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
   if (!resume) row(header);
 }
 
 void CsvSeries::row(const std::string& line) {
   out_ << line << '\n';
   out_.flush();
-  if (!out_) throw std::runtime_error(fmt::format("error while writing '{}'", path_));
+  if (!out_) throw OutputError(fmt::format("error while writing '{}': {}", path_, std::strerror(errno)));
 }
 
 std::uint64_t CsvSeries::size() {
@@ -66,10 +81,14 @@ std::uint64_t CsvSeries::size() {
 }
 
 void CsvSeries::truncate_to(std::uint64_t bytes) {
+  const std::uint64_t now = size();
+  if (bytes > now)
+    throw InputError(fmt::format("--restart: {} holds {} bytes, fewer than the {} the checkpoint recorded; its rows "
+                                 "were removed since (start the run anew without --restart)", path_, now, bytes));
   out_.close();
   std::filesystem::resize_file(path_, bytes);
   out_.open(path_, std::ios::app);
-  if (!out_) throw std::runtime_error(fmt::format("cannot reopen '{}'", path_));
+  if (!out_) throw OutputError(fmt::format("cannot reopen '{}': {}", path_, std::strerror(errno)));
 }
 
 }  // namespace blastsim::app

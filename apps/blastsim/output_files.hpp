@@ -2,6 +2,7 @@
 //! \brief Crash-safe output files: every file is written under a temporary name and renamed into place.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -11,6 +12,16 @@
 #include <vector>
 
 namespace blastsim::app {
+
+//! Advances a schedule time `next` [s] by whole `interval`s until it exceeds `limit`: by repeated addition
+//! (the exact sums a run's output times are made of) and, when `limit` lies more than a million intervals
+//! ahead, first by one jump, so the loop is bounded whatever the interval and the step (the input refuses
+//! intervals below 1e-9 x time.end, which could not advance the time).
+inline void advance_schedule(double& next, double interval, double limit) {
+  const double ahead = (limit - next) / interval;
+  if (ahead > 1e6) next += std::floor(ahead - 1e3) * interval;
+  while (next <= limit) next += interval;
+}
 
 //! Writes `path` through `fill` into "path.tmp", then renames it over `path` (atomic on POSIX): a crash
 //! leaves either the old or the new file, never a partial one. Throws std::runtime_error on I/O failure.

@@ -63,6 +63,15 @@ RockMeshSpec read_mesh(TableReader& t) {
     if (s.shape == "rectangle_with_hole") s.center = t.pair("center", "m");
     s.hole_radius = t.number("hole_radius", "m", Range::positive());
   }
+  // Memory before meshing: about 2.3 area / h^2 triangles, each about 2 kB in mesh, topology and solver.
+  if (s.shape != "file") {
+    const double area = s.shape == "rectangle" || s.shape == "rectangle_with_hole"
+                            ? std::fabs((s.max[0] - s.min[0]) * (s.max[1] - s.min[1]))
+                            : M_PI * s.radius * s.radius;
+    check_memory_need(fmt::format("rock.mesh.element_size = {:g} m on this {} (about {:.3g} triangles)", s.element_size,
+                                  s.shape, 2.3 * area / (s.element_size * s.element_size)),
+                      2.3 * area / (s.element_size * s.element_size) * 2048.0);
+  }
   for (TableReader& l : t.table_array("joint_line")) {
     const fdem::Segment g{l.pair("from", "m"), l.pair("to", "m")};
     l.finish();
@@ -141,6 +150,7 @@ RockCaseConfig read_rock_case(const toml::table& input) {
   TableReader out = root.table("output");
   assign_output_basics(read_output_basics(out, 10), c);
   out.finish();
+  check_interval("output.interval", c.output_interval, c.end_time, true);
   root.finish();
   return c;
 }
@@ -207,6 +217,11 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
     c.regions.push_back(m);
   }
   monitor.finish();
+  std::vector<std::string> region_names;
+  for (const MonitorRegion& m : c.regions) region_names.push_back(m.name);
+  check_unique_names("monitor.region", region_names);
+  check_gas_intervals(c.gas);
+  if (c.blasthole) check_interval("monitor.blasthole.interval", c.blasthole->interval, c.gas.end_time, false);
   root.finish();
   return c;
 }

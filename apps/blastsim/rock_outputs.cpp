@@ -115,6 +115,7 @@ void RockOutputs::write_checkpoint(CheckpointWriter& w) {
 
 void RockOutputs::read_checkpoint(CheckpointReader& r) {
   index_ = r.value<int>("out.rock.index");
+  if (index_ < 0) r.fail("out.rock.index", "negative");
   e0_ = r.value<fdem::RockEnergies>("out.rock.initial");
   series_.truncate_to(r.value<std::uint64_t>("out.rock.csv_size"));
   read_pvd_checkpoint(r, "out.rock.pvd", rock_pvd_);

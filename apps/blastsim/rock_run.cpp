@@ -57,7 +57,7 @@ class RockRunOutputs : public RunOutputs {
     const bool listed = next_time_ < c_.output_times.size() && solver_.time() >= c_.output_times[next_time_] - tol;
     if ((solver_.time() >= next_snapshot_ - tol || listed) && solver_.time() < c_.end_time - tol) {
       out_.snapshot();
-      while (c_.output_interval > 0 && next_snapshot_ <= solver_.time() + tol) next_snapshot_ += c_.output_interval;
+      if (c_.output_interval > 0) advance_schedule(next_snapshot_, c_.output_interval, solver_.time() + tol);
       while (next_time_ < c_.output_times.size() && c_.output_times[next_time_] <= solver_.time() + tol) ++next_time_;
     }
   }

@@ -2,6 +2,8 @@
 //! \brief The driver's time loop and its progress lines.
 #include "run_loop.hpp"
 
+#include "blastsim/core/error.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -37,6 +39,10 @@ void run_loop(Stepper& stepper, RunOutputs& outputs, const RunControl& control, 
       break;
     }
     const double dt = stepper.next_dt(outputs.next_event(stepper.time()));
+    if (!(dt >= 1e-12 * control.end_time))  // also NaN
+      throw InstabilityError(fmt::format("the time step collapsed to dt = {:g} s at step {} (t = {:.6e} s), below 1e-12 x "
+                                         "time.end: the run could not finish; the last good output is kept",
+                                         dt, stepper.steps(), stepper.time()));
     stepper.step(dt);
     const bool last = stepper.time() >= end;
     outputs.after_step(dt, last);

@@ -2,9 +2,13 @@
 //! \brief .vti writer through vtkXMLImageDataWriter (compiled only when VTK is available).
 #include "vtk_gas_writer.hpp"
 
+#include "blastsim/core/error.hpp"
 #include "output_files.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
+#include <string>
 
 #if defined(BLASTSIM_HAVE_VTK)
 #include <vtkCellData.h>
@@ -57,7 +61,11 @@ void write_gas_vti(const std::string& path, const cip::GasGrid& grid, const cip:
   writer->SetInputData(image);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary
-  if (writer->Write() != 1) throw std::runtime_error("VTK could not write '" + tmp + "'");
+  // VTK reports a full disk through its error code, not always through Write()'s result: check both, and
+  // never rename a failed file into place.
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+    throw OutputError("VTK could not write '" + tmp + "' (VTK error code " + std::to_string(writer->GetErrorCode()) +
+                      "; " + std::strerror(errno) + ")");
   commit_file(tmp, path);
 }
 #else

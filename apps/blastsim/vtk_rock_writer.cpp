@@ -2,10 +2,14 @@
 //! \brief .vtu writers for the rock through vtkXMLUnstructuredGridWriter (compiled only when VTK is available).
 #include "vtk_rock_writer.hpp"
 
+#include "blastsim/core/error.hpp"
 #include "output_files.hpp"
 
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
+#include <string>
 
 #if defined(BLASTSIM_HAVE_VTK)
 #include <vtkCellArray.h>
@@ -38,7 +42,11 @@ void write_grid(const std::string& path, vtkUnstructuredGrid* grid) {
   writer->SetInputData(grid);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
-  if (writer->Write() != 1) throw std::runtime_error("VTK could not write '" + tmp + "'");
+  // VTK reports a full disk through its error code, not always through Write()'s result: check both, and
+  // never rename a failed file into place.
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+    throw OutputError("VTK could not write '" + tmp + "' (VTK error code " + std::to_string(writer->GetErrorCode()) +
+                      "; " + std::strerror(errno) + ")");
   commit_file(tmp, path);
 }
 }  // namespace

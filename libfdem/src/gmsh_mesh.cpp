@@ -246,13 +246,6 @@ NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, d
   });
 }
 
-NamedMesh read_gmsh_file(const std::string& path) {
-  if (!std::ifstream(path)) throw InputError("mesh file '" + path + "' not found or not readable");
-  return guarded("mesh file '" + path + "'", [&] {
-    gmsh::open(path);
-    return extract_model("mesh file '" + path + "'");
-  });
-}
 
 #else  // no Gmsh in this build
 
@@ -270,8 +263,17 @@ NamedMesh gmsh_disc_with_hole(double, double, double, double, double, const std:
 NamedMesh gmsh_rectangle_with_hole(double, double, double, double, double, double, double, double) {
   no_gmsh("rectangle-with-hole mesh");
 }
-NamedMesh read_gmsh_file(const std::string& path) { no_gmsh("mesh file '" + path + "'"); }
 
 #endif
+
+// Gmsh's own reader (gmsh::open) interprets a file as a script: a .msh can carry commands such as SystemCall.
+// Mesh files are read by read_msh_file() as data instead, with or without Gmsh in the build.
+NamedMesh read_gmsh_file(const std::string& path) {
+  const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  if (ext == ".geo")
+    throw InputError("mesh file '" + path + "': a Gmsh script (.geo); blastsim reads meshes as data only (MSH 4.1 "
+                     "ASCII): mesh the script with gmsh first (gmsh -2 -format msh41 FILE.geo)");
+  return read_msh_file(path);
+}
 
 }  // namespace blastsim::fdem

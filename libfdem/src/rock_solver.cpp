@@ -474,11 +474,22 @@ RockSnapshot RockSolver::snapshot() const {
 
 void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.counts", std::array<int, 2>{triangles_, joints_});
-  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v) { w.array(name, v); });
+  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v, bool) { w.array(name, v); });
   w.value("rock.scalars", std::array<double, 9>{time_, pressure_scale_, dt_prev_, cell_size_, grid_x0_, grid_y0_, buffer_,
                                                 travel_since_build_, stable_dt_});
   w.value("rock.integers", std::array<long, 4>{steps_, rebuilds_, grid_nx_, grid_ny_});
 }
+
+namespace {
+//! Refuses a restored array whose values leave [lo, hi] (indices, flags), naming the record.
+template <class T>
+void check_range(const CheckpointReader& r, const std::string& name, const std::vector<T>& v, double lo, double hi) {
+  for (size_t k = 0; k < v.size(); ++k)
+    if (!(static_cast<double>(v[k]) >= lo && static_cast<double>(v[k]) <= hi))
+      r.fail(name, "entry " + std::to_string(k) + " = " + std::to_string(static_cast<double>(v[k])) + " outside [" +
+                       std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+}  // namespace
 
 void RockSolver::read_checkpoint(CheckpointReader& r) {
   const std::array<int, 2> counts = r.value<std::array<int, 2>>("rock.counts");
@@ -486,13 +497,55 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
     throw InputError("checkpoint " + r.path() + ": its rock has " + std::to_string(counts[0]) + " triangles and " +
                      std::to_string(counts[1]) + " joints, this case's mesh " + std::to_string(triangles_) + " and " +
                      std::to_string(joints_));
-  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, auto& v) { r.array(name, v); });
+  detail::RockArrays::for_each_checkpoint_array(
+      *a_, [&](const std::string& name, auto& v, bool fixed) { r.array(name, v, fixed ? v.size() : 0); });
   const std::array<double, 9> d = r.value<std::array<double, 9>>("rock.scalars");
+  for (size_t k = 0; k < d.size(); ++k)  // all finite; all but the grid origin (4, 5) non-negative
+    if (!std::isfinite(d[k]) || (k != 4 && k != 5 && d[k] < 0)) r.fail("rock.scalars", "a value is not finite or negative");
+  if (d[8] != stable_dt_) r.fail("rock.scalars", "its stable step differs from this mesh's (another mesh?)");
   time_ = d[0], pressure_scale_ = d[1], dt_prev_ = d[2], cell_size_ = d[3], grid_x0_ = d[4], grid_y0_ = d[5];
-  buffer_ = d[6], travel_since_build_ = d[7], stable_dt_ = d[8];
+  buffer_ = d[6], travel_since_build_ = d[7];
   const std::array<long, 4> n = r.value<std::array<long, 4>>("rock.integers");
+  if (n[0] < 0 || n[1] < 0 || n[2] < 1 || n[3] < 1 || n[2] > (1L << 20) || n[3] > (1L << 20))
+    r.fail("rock.integers", "step count or contact grid size out of range");
   steps_ = n[0], rebuilds_ = n[1], grid_nx_ = static_cast<int>(n[2]), grid_ny_ = static_cast<int>(n[3]);
-  if (options_.contact) build_contact_pairs();
+  // Every index and flag against what it addresses, before any kernel reads it.
+  const detail::RockArrays& a = *a_;
+  const double T = triangles_;
+  check_range(r, "rock.node_loads.constraint", to_host(a.node_loads.constraint), 0, 3);
+  check_range(r, "rock.edges.exposed", to_host(a.edges.exposed), 0, 2);
+  check_range(r, "rock.joints.broken", to_host(a.joints.broken), 0, 1);
+  std::vector<double> damage;
+  for (const JointPointDamage& jd : to_host(a.joints.damage)) damage.insert(damage.end(), jd.point, jd.point + kJointPoints);
+  check_range(r, "rock.joints.damage", damage, 0, 1);
+  if (options_.contact) {
+    const detail::ContactGridArrays& g = a.grid;
+    const double cells = static_cast<double>(grid_nx_) * grid_ny_;
+    if (g.cell_key.size() != static_cast<size_t>(triangles_) || g.sorted_triangles.size() != static_cast<size_t>(triangles_))
+      r.fail("rock.grid.cell_key", "its size is not the triangle count");
+    if (static_cast<double>(g.cell_start.size()) != cells || static_cast<double>(g.cell_end.size()) != cells)
+      r.fail("rock.grid.cell_start", "its size is not the contact grid's cell count");
+    check_range(r, "rock.grid.cell_key", to_host(g.cell_key), 0, cells - 1);
+    check_range(r, "rock.grid.sorted_triangles", to_host(g.sorted_triangles), 0, T - 1);
+    const std::vector<int> start = to_host(g.cell_start), end = to_host(g.cell_end);
+    check_range(r, "rock.grid.cell_start", start, 0, T);
+    check_range(r, "rock.grid.cell_end", end, 0, T);
+    for (size_t c = 0; c < start.size(); ++c)
+      if (start[c] > end[c]) r.fail("rock.grid.cell_start", "cell " + std::to_string(c) + " starts after it ends");
+    const std::vector<int> offset = to_host(g.neighbour_offset);
+    if (offset.size() != static_cast<size_t>(triangles_) + 1 || offset[0] != 0)
+      r.fail("rock.grid.neighbour_offset", "not an offset array of the triangles");
+    for (size_t t = 1; t < offset.size(); ++t)
+      if (offset[t] < offset[t - 1]) r.fail("rock.grid.neighbour_offset", "decreases at " + std::to_string(t));
+    if (static_cast<size_t>(offset.back()) > g.neighbour_list.size())
+      r.fail("rock.grid.neighbour_offset", "addresses past the candidate list");
+    check_range(r, "rock.grid.neighbour_list", to_host(g.neighbour_list), 0, T - 1);
+    try {
+      build_contact_pairs();
+    } catch (const std::logic_error& e) {
+      r.fail("rock.grid.neighbour_list", e.what());
+    }
+  }
 }
 
 }  // namespace blastsim::fdem

@@ -64,29 +64,28 @@ struct RockArrays {
   ContactGridArrays grid;
   ContactPairsArrays pairs;
 
-  //! Calls fn(record name, array) for every array a checkpoint holds: all but the derived contact pairs.
+  //! Calls fn(record name, array, fixed size) for every array a checkpoint holds: the loads and the state,
+  //! not the params (the restarted solver builds them from the same mesh and material) nor the derived contact
+  //! pairs; `fixed size` is false for the contact grid's arrays, whose sizes change with each rebuild.
   //! Self is RockArrays or const RockArrays.
   template <class Self, class Fn>
   static void for_each_checkpoint_array(Self& a, Fn&& fn) {
-#define BLASTSIM_VISIT_ARRAY(type, name, comment) fn(prefix + #name, group.name);
-#define BLASTSIM_VISIT_GROUP(member, LIST)                   \
+#define BLASTSIM_VISIT_ARRAY(type, name, comment) fn(prefix + #name, group.name, fixed);
+#define BLASTSIM_VISIT_GROUP(member, LIST, FIXED)            \
   {                                                          \
     auto& group = a.member;                                  \
     const std::string prefix = "rock." #member ".";          \
+    const bool fixed = FIXED;                                \
     LIST(BLASTSIM_VISIT_ARRAY)                               \
   }
-    BLASTSIM_VISIT_GROUP(node_params, BLASTSIM_ROCK_NODE_PARAMS)
-    BLASTSIM_VISIT_GROUP(triangle_params, BLASTSIM_ROCK_TRIANGLE_PARAMS)
-    BLASTSIM_VISIT_GROUP(edge_params, BLASTSIM_ROCK_EDGE_PARAMS)
-    BLASTSIM_VISIT_GROUP(joint_params, BLASTSIM_ROCK_JOINT_PARAMS)
-    BLASTSIM_VISIT_GROUP(node_loads, BLASTSIM_ROCK_NODE_LOADS)
-    BLASTSIM_VISIT_GROUP(nodes, BLASTSIM_ROCK_NODE_MOTION)
-    BLASTSIM_VISIT_GROUP(forces, BLASTSIM_ROCK_NODE_FORCES)
-    BLASTSIM_VISIT_GROUP(ledger, BLASTSIM_ROCK_NODE_LEDGER)
-    BLASTSIM_VISIT_GROUP(triangles, BLASTSIM_ROCK_TRIANGLE_STATE)
-    BLASTSIM_VISIT_GROUP(edges, BLASTSIM_ROCK_EDGE_STATE)
-    BLASTSIM_VISIT_GROUP(joints, BLASTSIM_ROCK_JOINT_STATE)
-    BLASTSIM_VISIT_GROUP(grid, BLASTSIM_ROCK_CONTACT_GRID)
+    BLASTSIM_VISIT_GROUP(node_loads, BLASTSIM_ROCK_NODE_LOADS, true)
+    BLASTSIM_VISIT_GROUP(nodes, BLASTSIM_ROCK_NODE_MOTION, true)
+    BLASTSIM_VISIT_GROUP(forces, BLASTSIM_ROCK_NODE_FORCES, true)
+    BLASTSIM_VISIT_GROUP(ledger, BLASTSIM_ROCK_NODE_LEDGER, true)
+    BLASTSIM_VISIT_GROUP(triangles, BLASTSIM_ROCK_TRIANGLE_STATE, true)
+    BLASTSIM_VISIT_GROUP(edges, BLASTSIM_ROCK_EDGE_STATE, true)
+    BLASTSIM_VISIT_GROUP(joints, BLASTSIM_ROCK_JOINT_STATE, true)
+    BLASTSIM_VISIT_GROUP(grid, BLASTSIM_ROCK_CONTACT_GRID, false)
 #undef BLASTSIM_VISIT_GROUP
 #undef BLASTSIM_VISIT_ARRAY
   }

@@ -118,7 +118,9 @@ void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
 }
 
 void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
-  masks_set_ = r.value<int>("ibm.masks_set") != 0;
+  const int masks = r.value<int>("ibm.masks_set");
+  if (masks != 0 && masks != 1) r.fail("ibm.masks_set", "not 0 or 1");
+  masks_set_ = masks == 1;
   r.array("ibm.ledger", a_->ledger, a_->ledger.size());
 }
 

@@ -120,8 +120,8 @@ TEST_CASE("Bad input: non-physical values name the key, the value and the allowe
   CHECK(error_of({"gas.gamma=0.9"}) == "gas.gamma = 0.9: must be > 1");
   CHECK(error_of({"domain.nx=2"}) == "domain.nx = 2: must be an integer >= 3");
   CHECK(error_of({"domain.ny=0"}) == "domain.ny = 0: must be an integer >= 3");
-  CHECK(error_of({"gas.courant=0"}) == "gas.courant = 0: must be in (0, 1]");
-  CHECK(error_of({"gas.courant=1.5"}) == "gas.courant = 1.5: must be in (0, 1]");
+  CHECK(error_of({"gas.courant=0"}) == "gas.courant = 0: must be in [1e-06, 1]");
+  CHECK(error_of({"gas.courant=1.5"}) == "gas.courant = 1.5: must be in [1e-06, 1]");
   CHECK(error_of({"gas.region.0.internal_energy=-5"}) == "gas.region.0.internal_energy = -5 J/kg: must be > 0");
   CHECK(error_of({"time.end=-1"}) == "time.end = -1 s: must be > 0");
   CHECK(error_of({"domain.x_max=-1"}) == "domain.x_max = -1 m: must be > 0");

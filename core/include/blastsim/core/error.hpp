@@ -1,5 +1,6 @@
 //! \file error.hpp
-//! \brief Exception types shared by the libraries: bad input (user's fault) and instability (the run's).
+//! \brief Exception types shared by the libraries: bad input (the user's), a failed write (the machine's) and
+//! instability (the run's).
 #pragma once
 
 #include <stdexcept>
@@ -9,6 +10,12 @@ namespace blastsim {
 
 //! Invalid user input: the message names the key, the value and what is allowed.
 class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+//! Writing an output file failed (disk full, permissions): the message names the file and the OS error.
+class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

@@ -38,9 +38,12 @@ NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, dou
 //! top, hole.
 NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, double cx, double cy, double r_hole,
                                    double h);
-//! Reads a Gmsh .msh file (format 4; 3-node triangles, 1-D physical groups name boundary edges). Throws
-//! InputError for a missing or unreadable file, or one with no triangles.
+//! Reads a Gmsh mesh file as data (read_msh_file()); refuses Gmsh scripts (.geo), which could run commands.
+//! Needs no Gmsh. Throws InputError for a missing, unreadable or malformed file, or one with no triangles.
 NamedMesh read_gmsh_file(const std::string& path);
+//! Parser of MSH 4.1 ASCII files (3-node triangles; 2-node lines of 1-D physical groups name boundary edges);
+//! nothing in the file is run, and errors give the line number.
+NamedMesh read_msh_file(const std::string& path);
 
 //! Boundary slots (see RockSolver) of the edges in `edges` (vertex pairs), looked up in the topology.
 //! Throws InputError naming the group if an edge is not a boundary edge of the topology.
