@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 namespace blastsim::cip {
 
@@ -330,13 +331,13 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   if (!std::isfinite(time_) || time_ < 0) r.fail("gas.time", "not a finite time >= 0");
   if (steps_ < 0) r.fail("gas.steps", "negative");
   // The masks are flags: anything but 0 and 1 is damage.
-  for (const char* name : {"gas.cell_active", "gas.u_prescribed", "gas.v_prescribed"}) {
-    const DeviceVector<std::uint8_t>& m = std::string(name) == "gas.cell_active"  ? a_->immersed.cell_active
-                                          : std::string(name) == "gas.u_prescribed" ? a_->immersed.u_prescribed
-                                                                                     : a_->immersed.v_prescribed;
-    for (const std::uint8_t flag : blastsim::to_host(m))
+  const std::pair<const char*, const DeviceVector<std::uint8_t>*> masks[] = {
+      {"gas.cell_active", &a_->immersed.cell_active},
+      {"gas.u_prescribed", &a_->immersed.u_prescribed},
+      {"gas.v_prescribed", &a_->immersed.v_prescribed}};
+  for (const auto& [name, mask] : masks)
+    for (const std::uint8_t flag : blastsim::to_host(*mask))
       if (flag > 1) r.fail(name, "holds a flag other than 0 or 1");
-  }
 }
 
 }  // namespace blastsim::cip
