@@ -24,7 +24,43 @@ cip::GasPoint CaseConfig::initial_state(double x, double y) const {
   return ambient;
 }
 
+cip::GasMaterials CaseConfig::materials() const {
+  cip::GasMaterials m;
+  m.air = eos;
+  m.products = explosive.value_or(eos);
+  for (const GasRegion& r : regions) m.two = m.two || r.state.products_fraction > 0.0;
+  return m;
+}
+
 namespace {
+
+//! [gas.explosive]: a preset (explosive = "ANFO") or the seven JWL parameters; checked by jwl_products().
+cip::EquationOfState read_explosive(TableReader& x) {
+  cip::JwlParameters p;
+  const char* keys[] = {"A", "B", "C", "R1", "R2", "w", "rho0"};
+  if (x.has("preset")) {
+    std::vector<std::string> names;
+    for (const cip::JwlPreset& preset : cip::kJwlPresets) names.push_back(preset.name);
+    p = cip::EquationOfState::jwl_preset(x.text("preset", names).c_str()).p;
+    for (const char* k : keys)
+      if (x.has(k))
+        throw InputError(fmt::format("{}: give either 'preset' or the JWL parameters, not both ('{}' given)", x.path(), k));
+  } else {
+    p.A = x.number("A", "Pa", Range::non_negative());
+    p.B = x.number("B", "Pa", Range::non_negative());
+    p.C = x.number("C", "Pa", Range::non_negative());
+    p.R1 = x.number("R1", "", Range::positive());
+    p.R2 = x.number("R2", "", Range::positive());
+    p.omega = x.number("w", "", Range::positive());
+    p.rho0 = x.number("rho0", "kg/m3", Range::positive());
+  }
+  x.finish();
+  try {
+    return cip::EquationOfState::jwl_products(p);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", x.path(), e.what()));
+  }
+}
 
 //! A gas state: density and exactly one of internal_energy / pressure, optional velocity.
 cip::GasPoint read_state(TableReader& t, const cip::EquationOfState& eos) {
@@ -88,6 +124,10 @@ void read_gas_sections(TableReader& root, CaseConfig& c) {
   TableReader ambient = gas.table("ambient", true);
   c.ambient = read_state(ambient, c.eos);
   ambient.finish();
+  if (gas.has("explosive")) {
+    TableReader x = gas.table("explosive");
+    c.explosive = read_explosive(x);
+  }
   for (TableReader& r : gas.table_array("region")) {
     GasRegion region;
     const std::string shape = r.text("shape", {"box", "circle"});
@@ -101,10 +141,18 @@ void read_gas_sections(TableReader& root, CaseConfig& c) {
       if (!(region.max[0] > region.min[0]) || !(region.max[1] > region.min[1]))
         throw InputError(fmt::format("{}: box needs max > min in x and y", r.path()));
     }
-    region.state = read_state(r, c.eos);
+    const bool products = r.text("material", {"air", "products"}, std::string("air")) == "products";
+    if (products && !c.explosive)
+      throw InputError(fmt::format("{}.material = \"products\" needs a [gas.explosive] table (the products' equation of "
+                                   "state)", r.path()));
+    region.state = read_state(r, products ? *c.explosive : c.eos);
+    region.state.products_fraction = products ? 1.0 : 0.0;
     r.finish();
     c.regions.push_back(region);
   }
+  if (c.materials().two && c.solver.transport != cip::Transport::conservative)
+    throw InputError("gas.transport = \"paper\": the paper's transport carries one gas; a [[gas.region]] of detonation "
+                     "products needs \"conservative\"");
   gas.finish();
 
   TableReader probe = root.table("probe");

@@ -20,7 +20,7 @@ struct GasRegion {
   std::array<double, 2> min{}, max{};  //!< [m] box corners
   std::array<double, 2> center{};      //!< [m] circle centre
   double radius = 0.0;                 //!< [m] circle radius
-  cip::GasPoint state{};
+  cip::GasPoint state{};  //!< products_fraction 1 for a products region
   bool contains(double x, double y) const;
 };
 
@@ -43,7 +43,8 @@ struct CaseConfig {
   // [domain]
   cip::GasGrid grid;
   // [gas]
-  cip::EquationOfState eos;
+  cip::EquationOfState eos;                     //!< the air (and the only gas without an explosive)
+  std::optional<cip::EquationOfState> explosive;  //!< [gas.explosive]: JWL detonation products
   cip::GasSolverOptions solver;
   double courant = 0.1;  //!< [-] dt = courant / max signal rate, or the limit a fixed dt must respect
   cip::GasPoint ambient{};
@@ -67,6 +68,8 @@ struct CaseConfig {
 
   //! Initial state at a point: the last region containing it, else the ambient state.
   cip::GasPoint initial_state(double x, double y) const;
+  //! The gas's materials: the air, and the explosive's products when a region holds them.
+  cip::GasMaterials materials() const;
 };
 
 }  // namespace blastsim::app

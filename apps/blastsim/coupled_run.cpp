@@ -329,7 +329,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   RockModel model = make_rock_model(c.rock);
   fdem::RockSolver& rock = *model.solver;
   const double rock_dt = rock_time_step(c.rock, rock);  // checks a fixed dt against the rock's stable step
-  cip::GasSolver gas(gc.grid, gc.eos, gc.solver);
+  cip::GasSolver gas(gc.grid, gc.materials(), gc.solver);
   gas.initialise([&](double x, double y) { return gc.initial_state(x, y); });
   ibm::GasRockCoupler coupler(gas, rock, gc.ambient);
   const bool resume = options.restart;

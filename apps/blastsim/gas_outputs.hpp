@@ -186,7 +186,7 @@ class GasOutputs {
     const cip::GasTotals s = solver_.totals();
     const cip::BoundaryOutflow& o = solver_.boundary_outflow();
     if (solver_.steps() == 0) initial_ = s;
-    const cip::BalanceDrift drift = cip::balance_drift(s, o, initial_);
+    const cip::BalanceDrift drift = cip::balance_drift(s, o, initial_, solver_.positivity_energy());
     const double mass_drift = drift.mass, energy_drift = drift.energy;
     totals_.row(fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
                            "{:.12e},{:.6e},{:.6e}",

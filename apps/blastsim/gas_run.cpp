@@ -58,7 +58,7 @@ class GasRunOutputs : public RunOutputs {
 void run_gas_case(const CaseConfig& c, std::ostream& log, const RunOptions& options) {
   if (c.vtk && !vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
-  cip::GasSolver solver(c.grid, c.eos, c.solver);
+  cip::GasSolver solver(c.grid, c.materials(), c.solver);
   solver.initialise([&](double x, double y) { return c.initial_state(x, y); });
   GasOutputs out(c, solver, log);
   out.write_due(0.0, true);

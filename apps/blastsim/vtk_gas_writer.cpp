@@ -43,6 +43,7 @@ void write_gas_vti(const std::string& path, const cip::GasGrid& grid, const cip:
   add_scalar(image, "density", h.rho);
   add_scalar(image, "pressure", h.p);
   add_scalar(image, "internal_energy", h.e);
+  if (!h.alpha.empty()) add_scalar(image, "products_fraction", h.alpha);
   vtkNew<vtkDoubleArray> vel;
   vel->SetName("velocity");
   vel->SetNumberOfComponents(3);

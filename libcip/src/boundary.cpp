@@ -123,7 +123,35 @@ struct FillGhostsY {
   }
 };
 
+//! Ghosts of the material fields (cell-centred values without derivatives) along x (axis 0) or y (axis 1):
+//! c runs over the 2 g ghost indices, t over the rows (x pass) or every padded column (y pass).
+struct FillMaterialGhosts {
+  MaterialView m;
+  int axis, n;
+  BoundaryKind lo, hi;
+  BLAST_HD void operator()(int c, int t) const {
+    const int g = GasGrid::ghost;
+    const int k = c < g ? c - g : n + (c - g);
+    const GhostSource src = ghost_source(k, n, false, k < 0 ? lo : hi, 1.0);
+    if (axis == 0) {
+      m.alpha(k, t) = m.alpha(src.source, t);
+      m.m1(k, t) = m.m1(src.source, t);
+    } else {
+      m.alpha(t, k) = m.alpha(t, src.source);
+      m.m1(t, k) = m.m1(t, src.source);
+    }
+  }
+};
+
 }  // namespace detail
+
+void fill_material_ghosts(const MaterialView& m, const GasGrid& grid, const BoundaryConditions& bc) {
+  const int g = GasGrid::ghost;
+  for_each_cell("cip.ghosts.materials_x", 0, 2 * g, 0, grid.ny,
+                detail::FillMaterialGhosts{m, 0, grid.nx, bc.kind(left), bc.kind(right)});
+  for_each_cell("cip.ghosts.materials_y", 0, 2 * g, -g, grid.nx + g,
+                detail::FillMaterialGhosts{m, 1, grid.ny, bc.kind(bottom), bc.kind(top)});
+}
 
 //! Fills the ghosts of a state (used on the current and on the starred state).
 void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryContext& ctx) {

@@ -20,10 +20,19 @@ void GasSolver::transport_conservatively(double dt) {
   const bool px = options_.boundaries.kind(left) == BoundaryKind::periodic;
   const bool py = options_.boundaries.kind(bottom) == BoundaryKind::periodic;
 
-  for_each_cell("cip.transport.flux_x", 0, g.nx + 1, 0, g.ny, MassFluxKernel{0, s, v.active, Fx, Ex, dt, g.dx, g.dy, options_.limiter});
-  for_each_cell("cip.transport.flux_y", 0, g.nx, 0, g.ny + 1, MassFluxKernel{1, s, v.active, Fy, Ey, dt, g.dy, g.dx, options_.limiter});
+  const MaterialView m = a_->materials(sh);
+  const Field2D<double> Mx = make_field_view(a_->products_flux_x, sh), My = make_field_view(a_->products_flux_y, sh);
+  const Field2D<double> Ax = make_field_view(a_->alpha_flux_x, sh), Ay = make_field_view(a_->alpha_flux_y, sh);
+  const Field2D<double> Wx = make_field_view(a_->volume_flux_x, sh), Wy = make_field_view(a_->volume_flux_y, sh);
+  const GasMaterials& mat = materials_;
+  for_each_cell("cip.transport.flux_x", 0, g.nx + 1, 0, g.ny,
+                MassFluxKernel{0, s, v.active, Fx, Ex, dt, g.dx, g.dy, options_.limiter, mat, m, Mx, Ax, Wx});
+  for_each_cell("cip.transport.flux_y", 0, g.nx, 0, g.ny + 1,
+                MassFluxKernel{1, s, v.active, Fy, Ey, dt, g.dy, g.dx, options_.limiter, mat, m, My, Ay, Wy});
   for_each_cell("cip.transport.cells", 0, g.nx, 0, g.ny,
-                CellFluxUpdateKernel{s, v.now, v.active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy});
+                CellFluxUpdateKernel{s, v.now, v.active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy, mat.two, m, Mx, My, Ax,
+                                     Ay, Wx, Wy});
+  if (mat.two) fill_material_ghosts(m, g, options_.boundaries);
   // Interior faces, and wall faces (held at rest, their incoming kinetic energy turned into heat). Outflow
   // faces are set by the ghost fill (characteristic condition); what they carry leaves the domain.
   thrust::fill(thrust::device, a_->dissipation_u.begin(), a_->dissipation_u.end(), 0.0);
@@ -40,7 +49,7 @@ void GasSolver::transport_conservatively(double dt) {
                                        make_field_view(a_->solid_work_v, sh), g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy,
                                        options_.limiter});
   for_each_cell("cip.transport.energy", 0, g.nx, 0, g.ny,
-                EnergyUpdateKernel{v.now, v.active, rho_e, Du, Dv, g.nx, g.ny, px, py});
+                EnergyUpdateKernel{v.now, v.active, rho_e, Du, Dv, make_field_view(a_->positivity_heat, sh), g.nx, g.ny, px, py});
 }
 
 }  // namespace blastsim::cip

@@ -22,28 +22,41 @@ GasGrid GasGrid::from_box(int nx, int ny, double x0, double x1, double y0, doubl
   return GasGrid{nx, ny, x0, y0, (x1 - x0) / nx, (y1 - y0) / ny};
 }
 
-EquationOfState EquationOfState::ideal(double gamma) {
-  if (!(gamma > 1.0) || !std::isfinite(gamma)) throw InputError("ideal-gas gamma must be > 1");
-  return EquationOfState{EosKind::ideal_gas, gamma};
-}
 
 
 void GasSolver::accumulate_boundary_outflow(double dt) {
   const PaddedShape sh = grid_.padded_shape();
   const TotalsSum f = reduce_sum(
-      "cip.boundary_outflow", 2 * static_cast<index_t>(grid_.nx + grid_.ny), TotalsSum{0, 0, 0, 0, 0},
+      "cip.boundary_outflow", 2 * static_cast<index_t>(grid_.nx + grid_.ny), TotalsSum{0, 0, 0, 0, 0, 0},
       BoundaryFlowKernel{a_->starred.view(sh), make_field_view(a_->pressure, sh), make_field_view(a_->mass_flux_x, sh),
-                                 make_field_view(a_->mass_flux_y, sh), make_field_view(a_->energy_flux_x, sh),
-                                 make_field_view(a_->energy_flux_y, sh), options_.transport == Transport::conservative,
-                                 grid_, options_.boundaries});
+                         make_field_view(a_->mass_flux_y, sh), make_field_view(a_->energy_flux_x, sh),
+                         make_field_view(a_->energy_flux_y, sh), make_field_view(a_->products_flux_x, sh),
+                         make_field_view(a_->products_flux_y, sh), options_.transport == Transport::conservative,
+                         materials_.two, grid_, options_.boundaries});
   outflow_.mass += dt * f.m;
   outflow_.momentum_x += dt * f.mx;
   outflow_.momentum_y += dt * f.my;
   outflow_.energy += dt * f.ei;
+  outflow_.products_mass += dt * f.m1;
 }
 
+namespace {
+GasMaterials one_material(const EquationOfState& eos) {
+  GasMaterials m;
+  m.air = eos;
+  m.products = eos;
+  return m;
+}
+}  // namespace
+
 GasSolver::GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasSolverOptions& options)
-    : grid_(grid), eos_(eos), options_(options), a_(std::make_unique<detail::GasArrays>()) {
+    : GasSolver(grid, one_material(eos), options) {}
+
+GasSolver::GasSolver(const GasGrid& grid, const GasMaterials& materials, const GasSolverOptions& options)
+    : grid_(grid), materials_(materials), options_(options), a_(std::make_unique<detail::GasArrays>()) {
+  if (materials.two && options.transport != Transport::conservative)
+    throw InputError("detonation products beside air need gas.transport = \"conservative\" (the paper's transport "
+                     "carries one gas)");
   if (grid.nx < 3 || grid.ny < 3) throw InputError("gas grid needs at least 3 cells along x and y");
   if (!(grid.dx > 0) || !(grid.dy > 0)) throw InputError("gas grid spacing must be positive");
   for (int a = 0; a < 2; ++a) {
@@ -51,7 +64,7 @@ GasSolver::GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasS
     const bool hi = options.boundaries.kind(2 * a + 1) == BoundaryKind::periodic;
     if (lo != hi) throw InputError("a periodic boundary must be set on both opposite sides");
   }
-  a_->resize(grid.padded_shape().size(), 2 * static_cast<index_t>(grid.nx + grid.ny));
+  a_->resize(grid.padded_shape().size(), 2 * static_cast<index_t>(grid.nx + grid.ny), materials.two);
 }
 
 GasSolver::~GasSolver() = default;
@@ -60,18 +73,30 @@ GasSolver& GasSolver::operator=(GasSolver&&) noexcept = default;
 
 GasStateView GasSolver::state() { return a_->state.view(grid_.padded_shape()); }
 GasStateReadView GasSolver::state() const { return a_->state.view(grid_.padded_shape()); }
+MaterialView GasSolver::material_fields() { return a_->materials(grid_.padded_shape()); }
+MaterialReadView GasSolver::material_fields() const { return a_->materials(grid_.padded_shape()); }
 ImmersedBoundaryView GasSolver::immersed_boundary() { return a_->immersed.view(grid_.padded_shape()); }
 Field2D<double> GasSolver::pressure_with_viscosity() { return make_field_view(a_->pressure, grid_.padded_shape()); }
 
 void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_at) {
   const PaddedShape sh = grid_.padded_shape();
   std::vector<double> rho(sh.size(), 0.0), e(sh.size(), 0.0), u(sh.size(), 0.0), v(sh.size(), 0.0);
+  std::vector<double> alpha(materials_.two ? sh.size() : 0, 0.0), m1(alpha.size(), 0.0);
   for (int j = 0; j <= grid_.ny; ++j) {
     for (int i = 0; i <= grid_.nx; ++i) {
       if (i < grid_.nx && j < grid_.ny) {
         const GasPoint c = state_at(grid_.cell_x(i), grid_.cell_y(j));
         rho[sh.offset(i, j)] = c.density;
         e[sh.offset(i, j)] = c.internal_energy;
+        if (!(c.products_fraction >= 0.0 && c.products_fraction <= 1.0))
+          throw InputError("products volume fraction " + std::to_string(c.products_fraction) + " outside [0, 1]");
+        if (c.products_fraction > 0.0 && !materials_.two)
+          throw InputError("detonation products in the initial state of a one-material gas (no explosive given)");
+        if (materials_.two) {
+          // Both phases at the cell's density: the cell is all products, all air, or (rarely) a blend.
+          alpha[sh.offset(i, j)] = c.products_fraction;
+          m1[sh.offset(i, j)] = c.products_fraction * c.density;
+        }
       }
       if (j < grid_.ny) u[sh.offset(i, j)] = state_at(grid_.face_x(i), grid_.cell_y(j)).velocity_x;
       if (i < grid_.nx) v[sh.offset(i, j)] = state_at(grid_.cell_x(i), grid_.face_y(j)).velocity_y;
@@ -79,17 +104,21 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
   }
   // Reference state of the outflow faces (OutflowReference order): the initial boundary state.
   const int nx = grid_.nx, ny = grid_.ny;
+  auto p_at = [&](int i, int j) {
+    const index_t k = sh.offset(i, j);
+    return materials_.two ? materials_.pressure(rho[k], e[k], alpha[k], m1[k]) : materials_.air.pressure(rho[k], e[k]);
+  };
   std::vector<double> p_ref(2 * static_cast<size_t>(nx + ny)), w_ref(p_ref.size());
   for (int j = 0; j < ny; ++j) {
-    p_ref[j] = eos_.pressure(rho[sh.offset(0, j)], e[sh.offset(0, j)]);
+    p_ref[j] = p_at(0, j);
     w_ref[j] = -u[sh.offset(0, j)];
-    p_ref[ny + j] = eos_.pressure(rho[sh.offset(nx - 1, j)], e[sh.offset(nx - 1, j)]);
+    p_ref[ny + j] = p_at(nx - 1, j);
     w_ref[ny + j] = u[sh.offset(nx, j)];
   }
   for (int i = 0; i < nx; ++i) {
-    p_ref[2 * ny + i] = eos_.pressure(rho[sh.offset(i, 0)], e[sh.offset(i, 0)]);
+    p_ref[2 * ny + i] = p_at(i, 0);
     w_ref[2 * ny + i] = -v[sh.offset(i, 0)];
-    p_ref[2 * ny + nx + i] = eos_.pressure(rho[sh.offset(i, ny - 1)], e[sh.offset(i, ny - 1)]);
+    p_ref[2 * ny + nx + i] = p_at(i, ny - 1);
     w_ref[2 * ny + nx + i] = v[sh.offset(i, ny)];
   }
   copy_from_host(a_->outflow_pressure, p_ref);
@@ -99,11 +128,16 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
   copy_from_host(a_->state.e.f, e);
   copy_from_host(a_->state.u.f, u);
   copy_from_host(a_->state.v.f, v);
+  if (materials_.two) {
+    copy_from_host(a_->alpha, alpha);
+    copy_from_host(a_->m1, m1);
+  }
   time_ = 0.0;
   steps_ = 0;
   outflow_ = BoundaryOutflow{};
   thrust::fill(thrust::device, a_->solid_work_u.begin(), a_->solid_work_u.end(), 0.0);
   thrust::fill(thrust::device, a_->solid_work_v.begin(), a_->solid_work_v.end(), 0.0);
+  thrust::fill(thrust::device, a_->positivity_heat.begin(), a_->positivity_heat.end(), 0.0);
   apply_boundaries();
   // Derivatives: zero in uniform regions and next to jumps between them (the paper's Table 1), centred
   // differences where the initial data are smooth (zero there would cost CIP its order of accuracy).
@@ -112,17 +146,21 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
   apply_boundaries();
 }
 
-void GasSolver::apply_boundaries() { fill_ghosts(state(), grid_, boundary_context()); }
+void GasSolver::apply_boundaries() {
+  if (materials_.two) fill_material_ghosts(material_fields(), grid_, options_.boundaries);
+  fill_ghosts(state(), grid_, boundary_context());
+}
 
 BoundaryContext GasSolver::boundary_context() const {
-  return {options_.boundaries, eos_, {device_ptr(a_->outflow_pressure), device_ptr(a_->outflow_velocity)}};
+  return {options_.boundaries, materials_, material_fields(),
+          {device_ptr(a_->outflow_pressure), device_ptr(a_->outflow_velocity)}};
 }
 
 double GasSolver::max_signal_rate() const {
   const GasStateReadView s = state();
   const ImmersedBoundaryView ib = a_->immersed.view(grid_.padded_shape());
   return reduce_max("cip.signal_rate", static_cast<index_t>(grid_.nx) * grid_.ny, 0.0,
-                    SignalRate{s, {ib.cell_active.data, ib.cell_active.shape}, eos_, grid_.nx, grid_.dx,
+                    SignalRate{s, material_fields(), {ib.cell_active.data, ib.cell_active.shape}, materials_, grid_.nx, grid_.dx,
                                        grid_.dy});
 }
 
@@ -149,7 +187,8 @@ void GasSolver::step(double dt) {
   // 1. P = p + q (paper eqs. 4-5). The ghosts of the current state are valid: initialise(), the end of
   //    the previous step, or apply_boundaries() after an outside write to state() filled them.
   for_each_cell("cip.pressure", 0, g.nx, 0, g.ny,
-                PressureKernel{n, active, P, eos_, options_.viscosity.linear, options_.viscosity.quadratic});
+                PressureKernel{n, material_fields(), active, P, materials_, options_.viscosity.linear,
+                               options_.viscosity.quadratic});
   for_each_index("cip.pressure.ghosts", 2 * static_cast<index_t>(g.nx + g.ny),
                  PressureGhostKernel{P, g.nx, g.ny, options_.boundaries});
   // 2. Non-advection phase: face velocities, then density and energy (paper eqs. 1-3).
@@ -189,14 +228,16 @@ void GasSolver::step(double dt) {
 GasTotals GasSolver::totals(const CellRegion& region) const {
   const ImmersedBoundaryView ib = a_->immersed.view(grid_.padded_shape());
   const TotalsSum t = reduce_sum(
-      "cip.totals", static_cast<index_t>(grid_.nx) * grid_.ny, TotalsSum{0, 0, 0, 0, 0},
-      TotalsOfCell{state(), {ib.cell_active.data, ib.cell_active.shape}, grid_.nx, grid_.cell_area(), grid_, region});
+      "cip.totals", static_cast<index_t>(grid_.nx) * grid_.ny, TotalsSum{0, 0, 0, 0, 0, 0},
+      TotalsOfCell{state(), material_fields(), materials_.two, {ib.cell_active.data, ib.cell_active.shape}, grid_.nx,
+                   grid_.cell_area(), grid_, region});
   GasTotals out;
   out.mass = t.m;
   out.momentum_x = t.mx;
   out.momentum_y = t.my;
   out.internal_energy = t.ei;
   out.kinetic_energy = t.ek;
+  out.products_mass = t.m1;
   return out;
 }
 
@@ -211,7 +252,7 @@ std::vector<GasSample> GasSolver::sample(const std::vector<std::array<double, 2>
   copy_from_host(xy_d, xy);
   DeviceVector<GasSample> out_d(points.size());
   for_each_index("cip.sample", static_cast<index_t>(points.size()),
-                 SampleKernel{state(), grid_, eos_, device_ptr(xy_d), device_ptr(out_d)});
+                 SampleKernel{state(), material_fields(), grid_, materials_, device_ptr(xy_d), device_ptr(out_d)});
   return blastsim::to_host(out_d);
 }
 
@@ -220,6 +261,7 @@ HostGasFields GasSolver::to_host() const {
   const std::vector<double> rho = blastsim::to_host(a_->state.rho.f), e = blastsim::to_host(a_->state.e.f);
   const std::vector<double> u = blastsim::to_host(a_->state.u.f), v = blastsim::to_host(a_->state.v.f);
   const std::vector<std::uint8_t> active = blastsim::to_host(a_->immersed.cell_active);
+  const std::vector<double> alpha = blastsim::to_host(a_->alpha), m1 = blastsim::to_host(a_->m1);
   HostGasFields h;
   h.nx = grid_.nx;
   h.ny = grid_.ny;
@@ -230,12 +272,19 @@ HostGasFields GasSolver::to_host() const {
   h.u.resize(n);
   h.v.resize(n);
   h.active.resize(n);
+  if (materials_.two) h.alpha.resize(n);
   for (int j = 0; j < grid_.ny; ++j) {
     for (int i = 0; i < grid_.nx; ++i) {
       const size_t k = static_cast<size_t>(j) * grid_.nx + i;
       h.rho[k] = rho[sh.offset(i, j)];
       h.e[k] = e[sh.offset(i, j)];
-      h.p[k] = eos_.pressure(h.rho[k], h.e[k]);
+      if (materials_.two) {
+        const index_t o = sh.offset(i, j);
+        h.alpha[k] = alpha[o];
+        h.p[k] = materials_.pressure(h.rho[k], h.e[k], alpha[o], m1[o]);
+      } else {
+        h.p[k] = materials_.air.pressure(h.rho[k], h.e[k]);
+      }
       h.u[k] = 0.5 * (u[sh.offset(i, j)] + u[sh.offset(i + 1, j)]);
       h.v[k] = 0.5 * (v[sh.offset(i, j)] + v[sh.offset(i, j + 1)]);
       h.active[k] = active[sh.offset(i, j)];
@@ -249,6 +298,7 @@ std::string GasSolver::describe_invalid_cell() const {
   const std::vector<double> rho = blastsim::to_host(a_->state.rho.f), e = blastsim::to_host(a_->state.e.f);
   const std::vector<double> u = blastsim::to_host(a_->state.u.f), v = blastsim::to_host(a_->state.v.f);
   const std::vector<std::uint8_t> active = blastsim::to_host(a_->immersed.cell_active);
+  const std::vector<double> alpha = blastsim::to_host(a_->alpha), m1 = blastsim::to_host(a_->m1);
   for (int j = 0; j < grid_.ny; ++j) {
     for (int i = 0; i < grid_.nx; ++i) {
       const index_t k = sh.offset(i, j);
@@ -256,7 +306,14 @@ std::string GasSolver::describe_invalid_cell() const {
       const char* what = nullptr;
       double value = 0.0;
       if (!(rho[k] > 0.0) || !std::isfinite(rho[k])) what = "density", value = rho[k];
-      else if (!(e[k] > 0.0) || !std::isfinite(e[k])) what = "internal energy", value = e[k];
+      else if (materials_.two) {
+        // Products' internal energy may be negative (it is measured from the JWL reference curve): the
+        // pressure and the sound speed must be positive.
+        const double p = materials_.pressure(rho[k], e[k], alpha[k], m1[k]);
+        if (!(p > 0.0) || !std::isfinite(p)) what = "pressure", value = p;
+        else if (!(materials_.sound_speed(rho[k], e[k], alpha[k], m1[k]) > 0.0)) what = "internal energy (no real sound speed)", value = e[k];
+      } else if (!(e[k] > 0.0) || !std::isfinite(e[k])) what = "internal energy", value = e[k];
+      if (!what && materials_.two && !(alpha[k] >= 0.0 && alpha[k] <= 1.0)) what = "products volume fraction", value = alpha[k];
       else if (!std::isfinite(u[k])) what = "x-velocity", value = u[k];
       else if (!std::isfinite(v[k])) what = "y-velocity", value = v[k];
       if (what) {
@@ -317,6 +374,13 @@ double GasSolver::immersed_face_work() const {
   return grid_.dx * grid_.dy *
          reduce_sum("cip.solid_work", static_cast<index_t>(a_->solid_work_u.size()), 0.0,
                     [=] BLAST_HD(index_t k) { return wu[k] + wv[k]; });
+}
+
+double GasSolver::positivity_energy() const {
+  const double* a = device_ptr(a_->positivity_heat);
+  return grid_.dx * grid_.dy *
+         reduce_sum("cip.positivity_energy", static_cast<index_t>(a_->positivity_heat.size()), 0.0,
+                    [=] BLAST_HD(index_t k) { return a[k]; });
 }
 
 void GasSolver::read_checkpoint(CheckpointReader& r) {

@@ -67,7 +67,20 @@ struct ImmersedBoundaryArrays {
 //! Cumulative arrays on the padded shape, checkpointed (immersed_face_work()).
 #define BLASTSIM_GAS_LEDGER_ARRAYS(X)                                                         \
   X(solid_work_u, "energy immersed x-faces gave the gas, per face [J/m3]")                     \
-  X(solid_work_v, "energy immersed y-faces gave the gas, per face [J/m3]")
+  X(solid_work_v, "energy immersed y-faces gave the gas, per face [J/m3]")                     \
+  X(positivity_heat, "energy not taken by the kinetic-energy correction, per cell [J/m3]")
+//! Material fields (GasMaterials) and the transport's work arrays for them, on the padded shape; sized only in
+//! a run with products (empty otherwise). The first two are state and checkpointed.
+#define BLASTSIM_GAS_MATERIAL_ARRAYS(X)                                                     \
+  X(alpha, "volume fraction of the detonation products [-]")                                \
+  X(m1, "partial density of the products alpha rho1 [kg/m3]")
+#define BLASTSIM_GAS_MATERIAL_WORK_ARRAYS(X)                                                \
+  X(products_flux_x, "products mass flux through x-faces [kg/(m2 s)]")                      \
+  X(products_flux_y, "products mass flux through y-faces [kg/(m2 s)]")                      \
+  X(alpha_flux_x, "volume-fraction flux w alpha^ through x-faces [m/s]")                    \
+  X(alpha_flux_y, "volume-fraction flux through y-faces [m/s]")                             \
+  X(volume_flux_x, "face velocity of open x-faces, 0 on closed ones [m/s]")                 \
+  X(volume_flux_y, "face velocity of open y-faces [m/s]")
 //! Reference state of the outflow faces (OutflowReference order), set by initialise(), checkpointed.
 #define BLASTSIM_GAS_OUTFLOW_ARRAYS(X)                                  \
   X(outflow_pressure, "pressure of the cell beside each boundary face at the start [Pa]") \
@@ -83,9 +96,18 @@ struct GasArrays {
   BLASTSIM_GAS_WORK_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
   BLASTSIM_GAS_LEDGER_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
   BLASTSIM_GAS_OUTFLOW_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
+  BLASTSIM_GAS_MATERIAL_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
+  BLASTSIM_GAS_MATERIAL_WORK_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
 
-  //! Sizes every array: n points of the padded shape, `boundary_faces` outflow reference entries.
-  void resize(index_t n, index_t boundary_faces) {
+  MaterialView materials(PaddedShape s) { return {make_field_view(alpha, s), make_field_view(m1, s)}; }
+
+  //! Sizes every array: n points of the padded shape, `boundary_faces` outflow reference entries; the material
+  //! arrays only when `two_materials`.
+  void resize(index_t n, index_t boundary_faces, bool two_materials) {
+#define BLASTSIM_GAS_ASSIGN_MATERIAL(name, comment) name.assign(two_materials ? n : 0, 0.0);
+    BLASTSIM_GAS_MATERIAL_ARRAYS(BLASTSIM_GAS_ASSIGN_MATERIAL)
+    BLASTSIM_GAS_MATERIAL_WORK_ARRAYS(BLASTSIM_GAS_ASSIGN_MATERIAL)
+#undef BLASTSIM_GAS_ASSIGN_MATERIAL
     state.resize(n);
     starred.resize(n);
     immersed.resize(n);
@@ -116,6 +138,7 @@ struct GasArrays {
 #define BLASTSIM_GAS_VISIT(name, comment) fn("gas." #name, a.name);
     BLASTSIM_GAS_OUTFLOW_ARRAYS(BLASTSIM_GAS_VISIT)
     BLASTSIM_GAS_LEDGER_ARRAYS(BLASTSIM_GAS_VISIT)
+    BLASTSIM_GAS_MATERIAL_ARRAYS(BLASTSIM_GAS_VISIT)
 #undef BLASTSIM_GAS_VISIT
   }
 };

@@ -7,6 +7,9 @@
 namespace blastsim::cip {
 
 void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryContext& ctx);
+//! Ghosts of the products' volume fraction and partial density (zero gradient at walls and outflow sides,
+//! wrapped at periodic ones).
+void fill_material_ghosts(const MaterialView& m, const GasGrid& grid, const BoundaryConditions& bc);
 
 //! The views every phase of a step works on: the current state (n), the state after the non-advection
 //! phase (*) and the immersed-boundary input, read-only.

@@ -21,7 +21,9 @@ CoupledBudget coupled_budget(const cip::GasSolver& gas, const fdem::RockSolver& 
   const double now = b.gas.total_energy() + b.gas_energy_out + e.kinetic + e.strain + e.joint_work + e.contact_work +
                      e.damping_dissipated;
   b.immersed_face_work = gas.immersed_face_work();
-  b.residual = now - (initial + b.other_external_work + b.coupling.transitions.energy_created + b.immersed_face_work);
+  b.positivity_energy = gas.positivity_energy();
+  b.residual = now - (initial + b.other_external_work + b.coupling.transitions.energy_created + b.immersed_face_work +
+                      b.positivity_energy);
   return b;
 }
 

@@ -21,6 +21,7 @@ struct CouplerArrays {
   DeviceVector<int> u_owner, v_owner;  // padded shape: triangle covering each x-face / y-face point, -1: none
   DeviceVector<std::uint8_t> new_active, changed;  // padded shape: mask being built, cells whose gas moved
   DeviceVector<double> rho_next, e_next;           // padded shape: density and specific energy after the move
+  DeviceVector<double> alpha_next, m1_next;        // padded shape: products fields after the move (two materials)
   DeviceVector<double> ledger;  // 4 per cell: covered, uncovered, mass created [kg/m], energy created [J/m]
 };
 }  // namespace detail
@@ -34,6 +35,8 @@ GasRockCoupler::GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, cons
   a_->changed.assign(n, 0);
   a_->rho_next.assign(n, 0.0);
   a_->e_next.assign(n, 0.0);
+  a_->alpha_next.assign(gas.materials().two ? n : 0, 0.0);
+  a_->m1_next.assign(gas.materials().two ? n : 0, 0.0);
   a_->ledger.assign(4 * static_cast<index_t>(gas_.grid().nx) * gas_.grid().ny, 0.0);
 }
 
@@ -54,10 +57,16 @@ void GasRockCoupler::rock_to_gas() {
   const Field2D<double> rho_next = make_field_view(a_->rho_next, sh), e_next = make_field_view(a_->e_next, sh);
   for_each_cell("ibm.cells.mask", 0, g.nx, 0, g.ny, NewMaskKernel{uo, vo, fresh});
   const cip::GasStateView s = gas_.state();
+  const bool two = gas_.materials().two;
+  const cip::MaterialView m = gas_.material_fields();
+  const cip::MaterialView next{make_field_view(a_->alpha_next, sh), make_field_view(a_->m1_next, sh)};
   for_each_cell("ibm.cells.transition", 0, g.nx, 0, g.ny,
-                TransitionKernel{ib.cell_active, fresh, s.rho.f, s.e.f, s.u.f, s.v.f, rho_next, e_next, changed, device_ptr(a_->ledger),
-                                 g.nx, g.ny, g.cell_area(), ambient_.density, ambient_.internal_energy, !masks_set_});
-  for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny, ApplyTransitionKernel{fresh, changed, rho_next, e_next, ib.u_imposed, ib.v_imposed, ib.cell_active, s});
+                TransitionKernel{ib.cell_active, fresh, s.rho.f, s.e.f, s.u.f, s.v.f, rho_next, e_next, two, m, next,
+                                 changed, device_ptr(a_->ledger), g.nx, g.ny, g.cell_area(), ambient_.density,
+                                 ambient_.internal_energy, !masks_set_});
+  for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny,
+                ApplyTransitionKernel{fresh, changed, rho_next, e_next, ib.u_imposed, ib.v_imposed, ib.cell_active, s,
+                                      two, next, m});
   masks_set_ = true;
   gas_.apply_boundaries();
 }
@@ -67,10 +76,10 @@ void GasRockCoupler::gas_to_rock() {
   const cip::GasStateView s = gas_.state();
   const cip::ImmersedBoundaryView ib = gas_.immersed_boundary();
   const fdem::RockView rock = rock_.view();
-  const cip::EquationOfState eos = gas_.eos();
+  const cip::GasMaterials& mat = gas_.materials();
   for_each_index("ibm.edge_pressure", 3 * static_cast<index_t>(rock.triangles),
-                 EdgePressureKernel{rock, g, eos, ib.cell_active, s.rho.f, s.e.f,
-                                    eos.pressure(ambient_.density, ambient_.internal_energy)});
+                 EdgePressureKernel{rock, g, mat, gas_.material_fields(), ib.cell_active, s.rho.f, s.e.f,
+                                    mat.air.pressure(ambient_.density, ambient_.internal_energy)});
 }
 
 void GasRockCoupler::step(double dt, int rock_substeps) {

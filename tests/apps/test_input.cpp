@@ -60,7 +60,8 @@ TEST_CASE("A valid case is read with its defaults and echoed with units", "[app]
   CHECK_THAT(c.grid.dx, WithinRel(0.05, 1e-14));
   CHECK(c.courant == 0.1);
   CHECK(c.solver.transport == cip::Transport::conservative);
-  CHECK(c.solver.viscosity.linear == 0.25);  // the conservative transport's coefficients
+  CHECK(c.solver.viscosity.linear == 0.5);  // the conservative transport's coefficients
+  CHECK(c.solver.viscosity.quadratic == 1.0);
   const app::CaseConfig paper = read(kValid, {"gas.transport=paper"});
   CHECK(paper.solver.transport == cip::Transport::paper);
   CHECK(paper.solver.viscosity.linear == 1.0);  // the paper's transport's coefficients
@@ -136,4 +137,33 @@ TEST_CASE("Bad input file: a missing file is named", "[app][input][bad]") {
   } catch (const InputError& e) {
     CHECK(contains(e.what(), "/nonexistent/case.toml"));
   }
+}
+
+TEST_CASE("Detonation products: an explosive preset or JWL parameters, products regions, and their errors",
+          "[app][input][explosive]") {
+  // A preset and a products region: two materials, the region's energy from the products' equation of state.
+  const app::CaseConfig c = read(kValid, {"gas.explosive.preset=\"ANFO\"", "gas.region.0.material=\"products\"",
+                                          "gas.region.0.density=800.0", "gas.region.0.internal_energy=2.0e6"});
+  REQUIRE(c.explosive.has_value());
+  CHECK(c.materials().two);
+  CHECK(c.explosive->jwl.rho0 == 800.0);
+  CHECK(c.initial_state(0.5, 0.25).products_fraction == 1.0);
+  CHECK(c.initial_state(0.05, 0.05).products_fraction == 0.0);
+  // The seven parameters instead of a preset.
+  const app::CaseConfig u = read(kValid, {"gas.explosive.A=3.712e11", "gas.explosive.B=3.231e9", "gas.explosive.C=1.045e9",
+                                          "gas.explosive.R1=4.15", "gas.explosive.R2=0.95", "gas.explosive.w=0.3",
+                                          "gas.explosive.rho0=1630.0", "gas.region.0.material=\"products\""});
+  CHECK(u.explosive->jwl.R1 == 4.15);
+  // Errors name the key: a products region without an explosive, R1 <= R2, an unknown preset, both forms.
+  CHECK(contains(error_of({"gas.region.0.material=\"products\""}), "gas.region.0.material = \"products\" needs a "
+                                                                   "[gas.explosive]"));
+  CHECK(contains(error_of({"gas.explosive.A=3.712e11", "gas.explosive.B=3.231e9", "gas.explosive.C=1.045e9",
+                           "gas.explosive.R1=0.9", "gas.explosive.R2=0.95", "gas.explosive.w=0.3",
+                           "gas.explosive.rho0=1630.0"}),
+                 "gas.explosive: JWL parameter R1 = 0.9"));
+  CHECK(contains(error_of({"gas.explosive.preset=\"dynamite\""}), "dynamite"));
+  CHECK(contains(error_of({"gas.explosive.preset=\"ANFO\"", "gas.explosive.w=0.3"}), "either 'preset'"));
+  CHECK(contains(error_of({"gas.explosive.preset=\"ANFO\"", "gas.region.0.material=\"products\"",
+                           "gas.transport=\"paper\""}),
+                 "conservative"));
 }

@@ -15,6 +15,7 @@
 #include "blastsim/fdem/rock_solver.hpp"
 #include "blastsim/ibm/coupler.hpp"
 #include "catch.hpp"
+#include "short_blast.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,20 +34,13 @@ const std::string reference_file = std::string(BLASTSIM_TEST_DATA_DIR) + "/coupl
 
 //! The quantities compared, by name.
 std::map<std::string, double> short_blast_fingerprint() {
-  const double w = 1.12;
-  const cip::GasPoint air{1.20, 2.09e5, 0, 0}, hole_gas{163.0, 4.29e5, 0, 0};
-  cip::GasSolver gas(cip::GasGrid::from_box(192, 192, -w, w, -w, w), cip::EquationOfState::ideal(1.4));
-  const double r_fill = 0.05 + 1.5 * 2 * w / 192;
-  gas.initialise([&](double x, double y) { return x * x + y * y < r_fill * r_fill ? hole_gas : air; });
-  const fdem::FdemTopology topo = fdem::build_topology(fdem::ring_disc_with_hole(0, 0, 0.93, 0.05, 0.03).mesh);
-  fdem::RockSolver rock(topo, fdem::RockMaterial::paper_table2(), fdem::RockOptions{});
-  ibm::GasRockCoupler coupler(gas, rock, air);
-  coupler.rock_to_gas();
-  const double t_end = 20e-6;
-  while (gas.time() < t_end * (1 - 1e-12)) {
-    const double dt = std::min({gas.courant_dt(0.1), 0.9 * rock.stable_dt(), t_end - gas.time()});
-    coupler.step(dt);
-  }
+  cip::GasMaterials one_gas;
+  one_gas.air = cip::EquationOfState::ideal(1.4);
+  test::ShortBlast blast(one_gas, cip::GasPoint{163.0, 4.29e5, 0, 0});
+  blast.run_to(20e-6);
+  const cip::GasSolver& gas = blast.gas;
+  const fdem::RockSolver& rock = blast.rock;
+  const ibm::GasRockCoupler& coupler = *blast.coupler;
   const cip::GasTotals g = gas.totals();
   const fdem::RockEnergies e = rock.energies();
   const fdem::RockSnapshot s = rock.snapshot();

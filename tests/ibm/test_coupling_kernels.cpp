@@ -28,7 +28,8 @@ struct Patch {
   Field2D<T> out(std::vector<T>& a) { return {a.data(), shape}; }
   void run(double area, double rho_ambient, double e_ambient) {
     const ibm::TransitionKernel k{in(old_active), in(new_active), in(rho), in(e), in(u), in(v), out(rho_next),
-                                  out(e_next), out(changed), ledger.data(), n, n, area, rho_ambient, e_ambient, false};
+                                  out(e_next), false, cip::MaterialReadView{}, cip::MaterialView{}, out(changed),
+                                  ledger.data(), n, n, area, rho_ambient, e_ambient, false};
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) k(i, j);
   }

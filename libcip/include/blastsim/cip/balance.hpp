@@ -13,10 +13,13 @@ struct BalanceDrift {
   double energy = 0;
 };
 
-//! The drift of `now` (totals over the domain) and `out` (cumulative outflow) from `initial`; 0 for a
+//! The drift of `now` (totals over the domain) and `out` (cumulative outflow) from `initial`, less the
+//! energy `added` [J/m] by the positivity bound of the transport (GasSolver::positivity_energy()); 0 for a
 //! scheme that conserves to round-off.
-inline BalanceDrift balance_drift(const GasTotals& now, const BoundaryOutflow& out, const GasTotals& initial) {
-  return {(now.mass + out.mass) / initial.mass - 1, (now.total_energy() + out.energy) / initial.total_energy() - 1};
+inline BalanceDrift balance_drift(const GasTotals& now, const BoundaryOutflow& out, const GasTotals& initial,
+                                  double added = 0.0) {
+  return {(now.mass + out.mass) / initial.mass - 1,
+          (now.total_energy() + out.energy - added) / initial.total_energy() - 1};
 }
 
 }  // namespace blastsim::cip

@@ -14,7 +14,8 @@ namespace blastsim::cip {
 //! state and the reference state of the characteristic condition.
 struct BoundaryContext {
   BoundaryConditions bc;
-  EquationOfState eos;
+  GasMaterials mat;
+  MaterialReadView materials;  //!< read in two-material runs only
   OutflowReference reference;
 };
 
@@ -28,15 +29,21 @@ BLAST_HD inline double outflow_face_from_state(const BasicGasStateView<T>& s, co
   const int n = xside ? g.nx : g.ny;
   const int b = low ? 0 : n - 1, bi = low ? 1 : n - 2, fi = low ? 1 : n - 1;
   const double sign = low ? -1.0 : 1.0;
-  auto at = [&](const Field2D<T>& F, int k) { return xside ? F(k, t) : F(t, k); };
+  auto at = [&](const auto& F, int k) { return xside ? F(k, t) : F(t, k); };
   const double rho = at(s.rho.f, b), e = at(s.e.f, b);
-  const double p_b = ctx.eos.pressure(rho, e), p_i = ctx.eos.pressure(at(s.rho.f, bi), at(s.e.f, bi));
+  // Cell pressure and sound speed with the material fields of a two-material run.
+  auto pressure_of = [&](int k, double r, double en) {
+    return ctx.mat.two ? ctx.mat.pressure(r, en, at(ctx.materials.alpha, k), at(ctx.materials.m1, k))
+                       : ctx.mat.air.pressure(r, en);
+  };
+  const double p_b = pressure_of(b, rho, e), p_i = pressure_of(bi, at(s.rho.f, bi), at(s.e.f, bi));
   double p_face = 1.5 * p_b - 0.5 * p_i;
   if (!(p_face > 0.0)) p_face = p_b;
   const int r = side == left ? t : side == right ? g.ny + t : side == bottom ? 2 * g.ny + t : 2 * g.ny + g.nx + t;
   const Field2D<T> w = xside ? s.u.f : s.v.f;
   return outflow_face_velocity(sign * at(w, fi), ctx.reference.velocity[r], p_face, ctx.reference.pressure[r], rho,
-                               ctx.eos.sound_speed(rho, e));
+                               ctx.mat.two ? ctx.mat.sound_speed(rho, e, at(ctx.materials.alpha, b), at(ctx.materials.m1, b))
+                                           : ctx.mat.air.sound_speed(rho, e));
 }
 
 }  // namespace blastsim::cip

@@ -84,6 +84,15 @@ BLAST_HD inline CipPoint cip_advect_2d(const UpwindBlock& b, double Dx, double D
   return out;
 }
 
+//! Monotonised-central slope (van Leer's MC limiter) from the left and right differences: the centred
+//! difference where the data are smooth, zero at an extremum and next to a constant state.
+BLAST_HD inline double mc_slope(double left_diff, double right_diff) {
+  if (left_diff * right_diff <= 0.0) return 0.0;
+  const double c = 0.5 * (left_diff + right_diff);
+  const double m = 2.0 * (fabs(left_diff) < fabs(right_diff) ? left_diff : right_diff);
+  return fabs(c) < fabs(m) ? c : m;
+}
+
 //! Artificial viscosity, paper eq. (4) after Caramana, Shashkov & Whalen (JCP 144, 1998):
 //! q = c1 rho c_s |dU| + c2 rho dU^2 in compression (dU < 0), else 0. dU [m/s] is the undivided velocity
 //! difference across the cell, eq. (5). Returns [Pa].

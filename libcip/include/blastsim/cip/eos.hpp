@@ -1,5 +1,6 @@
 //! \file eos.hpp
-//! \brief Equation of state of the gas behind one interface (ideal gas now; JWL joins as another kind).
+//! \brief Equations of state of the gas: ideal gas (air, the paper's gas) and JWL detonation products, both in
+//! Mie-Gruneisen form p = p_ref(rho) + Gamma rho (e - e_ref(rho)).
 #pragma once
 
 #include "blastsim/core/macros.hpp"
@@ -8,30 +9,161 @@
 
 namespace blastsim::cip {
 
-enum class EosKind { ideal_gas };
+enum class EosKind { ideal_gas, jwl };
 
-//! Plain-data equation of state, copied by value into kernels. p(rho, e) and the sound speed c(rho, e).
-//! Ideal gas: p = (gamma - 1) rho e, c^2 = gamma p / rho (paper, Table 1: gamma = 1 + p/(rho e) = 1.40).
+//! Jones-Wilkins-Lee parameters of detonation products (Lee, Hornig & Kury 1968, UCRL-50422):
+//!   p = A (1 - w/(R1 V)) exp(-R1 V) + B (1 - w/(R2 V)) exp(-R2 V) + w rho e,   V = rho0 / rho,
+//! with e the specific internal energy [J/kg]. C is the third coefficient of the principal isentrope
+//! (isentrope_pressure()); it fixes the energy the products hold at each expansion.
+struct JwlParameters {
+  double A = 0;       //!< [Pa]
+  double B = 0;       //!< [Pa]
+  double C = 0;       //!< [Pa], principal isentrope only
+  double R1 = 0;      //!< [-]
+  double R2 = 0;      //!< [-]
+  double omega = 0;   //!< Gruneisen coefficient w [-]
+  double rho0 = 0;    //!< density of the unreacted explosive [kg/m3]
+
+  //! Pressure on the principal isentrope p_s(V) = A e^(-R1 V) + B e^(-R2 V) + C V^-(1+w) [Pa].
+  BLAST_HD double isentrope_pressure(double V) const {
+    return A * exp(-R1 * V) + B * exp(-R2 * V) + C * pow(V, -(1.0 + omega));
+  }
+  //! Internal energy per unit initial volume on the principal isentrope,
+  //! E_s(V) = A/R1 e^(-R1 V) + B/R2 e^(-R2 V) + C/w V^-w [J/m3] (so that dE_s/dV = -p_s).
+  BLAST_HD double isentrope_energy(double V) const {
+    return A / R1 * exp(-R1 * V) + B / R2 * exp(-R2 * V) + C / omega * pow(V, -omega);
+  }
+};
+
+//! The published parameter sets (presets of the input's `explosive` key).
+struct JwlPreset {
+  const char* name;
+  const char* source;
+  JwlParameters p;
+};
+//! ANFO: Sanchidrian, Castedo, Lopez, Segarra & Lopez, "Determination of the JWL constants for ANFO and
+//! emulsion explosives from cylinder test data", Central European Journal of Energetic Materials 12(2)
+//! (2015) 177-194. TNT: Dobratz & Crawford, LLNL Explosives Handbook, UCRL-52997 Change 2 (1985).
+inline constexpr JwlPreset kJwlPresets[] = {
+    {"ANFO", "Sanchidrian et al. 2015, CEJEM 12(2) 177",
+     {203.582e9, 2.973e9, 0.389e9, 6.651, 1.127, 0.39, 800.0}},
+    {"TNT", "Dobratz & Crawford 1985, LLNL Explosives Handbook UCRL-52997",
+     {371.2e9, 3.231e9, 1.045e9, 4.15, 0.95, 0.30, 1630.0}},
+};
+
+//! Plain-data equation of state, copied by value into kernels: p(rho, e), the sound speed c(rho, e) and the
+//! inverse e(rho, p). Both kinds are of Mie-Gruneisen form p = p_ref(rho) + Gamma rho (e - e_ref(rho)):
+//! - ideal gas: Gamma = gamma - 1, p_ref = e_ref = 0 (paper, Table 1: gamma = 1 + p/(rho e) = 1.40);
+//! - JWL: Gamma = w, p_ref = A e^(-R1 V) + B e^(-R2 V), e_ref = A/(R1 rho0) e^(-R1 V) + B/(R2 rho0) e^(-R2 V).
 struct EquationOfState {
   EosKind kind = EosKind::ideal_gas;
-  double gamma = 1.4;  //!< [-] ratio of specific heats, > 1
+  double gamma = 1.4;  //!< [-] ratio of specific heats, > 1 (ideal gas)
+  JwlParameters jwl;   //!< JWL parameters (kind == jwl)
+
+  //! Gruneisen coefficient Gamma [-].
+  BLAST_HD double gruneisen() const { return kind == EosKind::jwl ? jwl.omega : gamma - 1.0; }
+  //! Reference pressure p_ref(rho) [Pa].
+  BLAST_HD double reference_pressure(double density) const {
+    if (kind != EosKind::jwl) return 0.0;
+    const double V = jwl.rho0 / density;
+    return jwl.A * exp(-jwl.R1 * V) + jwl.B * exp(-jwl.R2 * V);
+  }
+  //! Reference specific internal energy e_ref(rho) [J/kg].
+  BLAST_HD double reference_energy(double density) const {
+    if (kind != EosKind::jwl) return 0.0;
+    const double V = jwl.rho0 / density;
+    return (jwl.A / jwl.R1 * exp(-jwl.R1 * V) + jwl.B / jwl.R2 * exp(-jwl.R2 * V)) / jwl.rho0;
+  }
 
   //! [Pa] from density [kg/m3] and specific internal energy [J/kg].
   BLAST_HD double pressure(double density, double internal_energy) const {
-    return (gamma - 1.0) * density * internal_energy;
+    if (kind != EosKind::jwl) return (gamma - 1.0) * density * internal_energy;
+    return reference_pressure(density) + jwl.omega * density * (internal_energy - reference_energy(density));
   }
-  //! [m/s]; NaN when e < 0 (callers treat that as an instability).
+  //! [m/s]; NaN when c^2 < 0 (callers treat that as an instability).
+  //! c^2 = (dp/drho)_e + p/rho^2 (dp/de)_rho.
   BLAST_HD double sound_speed(double density, double internal_energy) const {
-    (void)density;
-    return std::sqrt(gamma * (gamma - 1.0) * internal_energy);
+    if (kind != EosKind::jwl) return std::sqrt(gamma * (gamma - 1.0) * internal_energy);
+    const double V = jwl.rho0 / density, w = jwl.omega;
+    // d/drho of A (1 - w/(R V)) e^(-R V) = (V/rho) A e^(-R V) (R - w/V - w/(R V^2)).
+    auto term = [&](double A, double R) {
+      return V / density * A * exp(-R * V) * (R - w / V - w / (R * V * V));
+    };
+    const double p = pressure(density, internal_energy);
+    return std::sqrt(term(jwl.A, jwl.R1) + term(jwl.B, jwl.R2) + w * internal_energy + w * p / density);
   }
   //! [J/kg] specific internal energy that gives pressure p at density rho.
   BLAST_HD double internal_energy(double density, double pressure_pa) const {
-    return pressure_pa / ((gamma - 1.0) * density);
+    if (kind != EosKind::jwl) return pressure_pa / ((gamma - 1.0) * density);
+    return reference_energy(density) + (pressure_pa - reference_pressure(density)) / (jwl.omega * density);
   }
 
   //! Ideal gas; throws InputError unless gamma > 1.
   static EquationOfState ideal(double gamma);
+  //! JWL products; throws InputError naming the parameter unless A, B, C >= 0, A + B > 0, R1 > R2 > 0, w > 0
+  //! and rho0 > 0 (all finite).
+  static EquationOfState jwl_products(const JwlParameters& p);
+  //! The preset `name` of kJwlPresets (case-sensitive); throws InputError listing the presets otherwise.
+  static const JwlPreset& jwl_preset(const char* name);
+};
+
+//! The gas's materials (docs/gas-solver.md, "Two materials"): air (material 2) everywhere and, in a run with
+//! an explosive, detonation products (material 1) where the products' volume fraction alpha > 0. A cell holds
+//! the mixture density rho, the mixture specific internal energy e, alpha and the products' partial density
+//! m1 = alpha rho1. The two share one pressure (the five-equation model of Allaire, Clerc & Kokh, JCP 181
+//! (2002) 577, without the compaction term): with Mie-Gruneisen materials
+//!   rho e = sum_k alpha_k (p / Gamma_k + K_k(rho_k)),   K_k = rho_k e_ref,k - p_ref,k / Gamma_k,
+//! so p = (rho e - sum_k alpha_k K_k) / sum_k (alpha_k / Gamma_k): no iteration. A cell without products is
+//! computed by the air's equation of state itself (the same bytes as a one-material run).
+struct GasMaterials {
+  EquationOfState air;
+  EquationOfState products;
+  bool two = false;  //!< products present in this run
+
+  //! Volume fractions below this are pure air (or, 1 minus it, pure products) to the equation of state: the
+  //! transport smears alpha ahead of an interface down to denormal numbers, where m1 / alpha is no density.
+  //! Their products mass is still carried.
+  static constexpr double kMinFraction = 1e-10;
+
+  //! alpha_k K_k(rho_k) [J/m3] from the volume fraction and the partial density m_k = alpha_k rho_k, written
+  //! so that it stays bounded as alpha_k -> 0 (zero for an ideal gas).
+  BLAST_HD static double offset(const EquationOfState& eos, double alpha_k, double m_k) {
+    if (eos.kind != EosKind::jwl || !(alpha_k > kMinFraction) || !(m_k > 0.0)) return 0.0;
+    const double r = m_k / alpha_k;
+    return m_k * eos.reference_energy(r) - alpha_k * eos.reference_pressure(r) / eos.gruneisen();
+  }
+  //! Mixture pressure [Pa] from rho [kg/m3], e [J/kg], alpha [-] and m1 [kg/m3].
+  BLAST_HD double pressure(double rho, double e, double alpha, double m1) const {
+    if (!two || !(alpha > kMinFraction)) return air.pressure(rho, e);
+    const double a2 = 1.0 - alpha;
+    const double xi = alpha / products.gruneisen() + a2 / air.gruneisen();
+    return (rho * e - offset(products, alpha, m1) - offset(air, a2, rho - m1)) / xi;
+  }
+  //! Mixture sound speed [m/s] of the five-equation model: xi c^2 = sum_k Y_k c_k^2 / Gamma_k (Allaire et al.
+  //! 2002, eq. 2.9), c_k at the phase density and the common pressure; NaN for an invalid state.
+  BLAST_HD double sound_speed(double rho, double e, double alpha, double m1) const {
+    if (!two || !(alpha > kMinFraction)) return air.sound_speed(rho, e);
+    const double p = pressure(rho, e, alpha, m1);
+    const double a2 = 1.0 - alpha, m2 = rho - m1;
+    const double xi = alpha / products.gruneisen() + a2 / air.gruneisen();
+    double sum = 0.0;
+    if (m1 > 0.0) {
+      const double r1 = m1 / alpha, c1 = products.sound_speed(r1, products.internal_energy(r1, p));
+      sum += m1 / rho * c1 * c1 / products.gruneisen();
+    }
+    if (a2 > kMinFraction && m2 > 0.0) {
+      const double r2 = m2 / a2, c2 = air.sound_speed(r2, air.internal_energy(r2, p));
+      sum += m2 / rho * c2 * c2 / air.gruneisen();
+    }
+    return sqrt(sum / xi);
+  }
+  //! Mixture internal energy per unit volume rho e [J/m3] at pressure p, volume fraction alpha and phase
+  //! densities rho1, rho2 (the inverse of pressure()).
+  BLAST_HD double energy_density(double p, double alpha, double rho1, double rho2) const {
+    const double a2 = 1.0 - alpha;
+    return alpha * p / products.gruneisen() + a2 * p / air.gruneisen() + offset(products, alpha, alpha * rho1) +
+           offset(air, a2, a2 * rho2);
+  }
 };
 
 }  // namespace blastsim::cip

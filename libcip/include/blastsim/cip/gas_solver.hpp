@@ -31,13 +31,19 @@ struct GasArrays;
 //! impose solid velocities without host copies.
 class GasSolver {
  public:
+  //! One material, the gas `eos` everywhere.
   GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasSolverOptions& options = {});
+  //! Two materials when materials.two (air and detonation products, eos.hpp GasMaterials); needs the
+  //! conservative transport (InputError otherwise).
+  GasSolver(const GasGrid& grid, const GasMaterials& materials, const GasSolverOptions& options = {});
   ~GasSolver();
   GasSolver(GasSolver&&) noexcept;
   GasSolver& operator=(GasSolver&&) noexcept;
 
   const GasGrid& grid() const { return grid_; }
-  const EquationOfState& eos() const { return eos_; }
+  //! The air's equation of state (the only one in a one-material run).
+  const EquationOfState& eos() const { return materials_.air; }
+  const GasMaterials& materials() const { return materials_; }
   const GasSolverOptions& options() const { return options_; }
   double time() const { return time_; }          //!< [s] simulated time
   long long steps() const { return steps_; }     //!< steps taken
@@ -50,6 +56,10 @@ class GasSolver {
   //! Views of the current state; after writing interior values, call apply_boundaries().
   GasStateView state();
   GasStateReadView state() const;  //!< read-only view, for queries
+  //! Views of the products' volume fraction and partial density (empty fields in a one-material run); after
+  //! writing interior values, call apply_boundaries().
+  MaterialView material_fields();
+  MaterialReadView material_fields() const;
   ImmersedBoundaryView immersed_boundary();
   //! Cell-centred pressure p + q of the last step's non-advection phase [Pa] (padded shape).
   Field2D<double> pressure_with_viscosity();
@@ -76,6 +86,11 @@ class GasSolver {
   //! the gas's internal energy but counted here (conservative transport; docs/gas-solver.md). A coupled
   //! budget counts it as work of the rock on the gas.
   double immersed_face_work() const;
+  //! Cumulative energy [J/m] added to the gas where the kinetic-energy correction of the conservative
+  //! transport would have taken more than half a cell's internal energy in one step (near-vacuum
+  //! rarefactions; transport_kernels.hpp, kMaxCorrectionFraction). Zero in most runs; a balance counts it as
+  //! a source.
+  double positivity_energy() const;
   //! Samples the gas at host points [m] (a device gather; cost independent of the grid size).
   std::vector<GasSample> sample(const std::vector<std::array<double, 2>>& points) const;
   HostGasFields to_host() const;
@@ -94,7 +109,7 @@ class GasSolver {
   void transport_conservatively(double dt);
   void accumulate_boundary_outflow(double dt);
   GasGrid grid_;
-  EquationOfState eos_;
+  GasMaterials materials_;
   GasSolverOptions options_;
   std::unique_ptr<detail::GasArrays> a_;  // every device array (gas_storage.hpp)
   double time_ = 0.0;

@@ -3,6 +3,7 @@
 //! GasSolver, in libcip/src/gas_storage.hpp); plain header, no backend dependency.
 #pragma once
 
+#include "blastsim/cip/eos.hpp"
 #include "blastsim/cip/grid.hpp"
 #include "blastsim/core/field2d.hpp"
 
@@ -37,6 +38,31 @@ struct BasicGasStateView {
 };
 using GasStateView = BasicGasStateView<double>;
 using GasStateReadView = BasicGasStateView<const double>;
+
+//! View of the material fields at cell centres (GasMaterials): the products' volume fraction alpha [-] and
+//! partial density m1 = alpha rho1 [kg/m3]. Both zero in a run without products.
+template <class T>
+struct BasicMaterialView {
+  Field2D<T> alpha, m1;
+  template <class U = T, class = std::enable_if_t<!std::is_const_v<U>>>
+  BLAST_HD operator BasicMaterialView<const U>() const {
+    return {alpha, m1};
+  }
+};
+using MaterialView = BasicMaterialView<double>;
+using MaterialReadView = BasicMaterialView<const double>;
+
+//! Pressure [Pa] of cell (i, j) from its density, energy and (two-material runs) material fields.
+BLAST_HD inline double cell_pressure(const GasMaterials& mat, const MaterialReadView& m, double rho, double e, int i,
+                                     int j) {
+  return mat.two ? mat.pressure(rho, e, m.alpha(i, j), m.m1(i, j)) : mat.air.pressure(rho, e);
+}
+//! Sound speed [m/s] of cell (i, j), likewise.
+BLAST_HD inline double cell_sound_speed(const GasMaterials& mat, const MaterialReadView& m, double rho, double e,
+                                        int i, int j) {
+  return mat.two ? mat.sound_speed(rho, e, m.alpha(i, j), m.m1(i, j)) : mat.air.sound_speed(rho, e);
+}
+
 
 //! The immersed-boundary input of the gas solver (the paper's Fig. 1a), written by a coupler on the device:
 //! - cell_active(i, j) = 0 marks an inactive cell: CIP does not advance it and keeps whatever state the

@@ -29,15 +29,17 @@ BLAST_HD inline void store_point(const CipFieldView& F, int i, int j, const CipP
 //! P = p + q at the cell centres (paper eqs. 4-5). Inactive cells get q = 0.
 struct PressureKernel {
   GasStateReadView s;
+  MaterialReadView m;
   Field2D<const std::uint8_t> active;
   Field2D<double> P;
-  EquationOfState eos;
+  GasMaterials mat;
   double c1, c2;
   BLAST_HD void operator()(int i, int j) const {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     const double dU = velocity_jump(s.u.f(i, j), s.u.f(i + 1, j), s.v.f(i, j), s.v.f(i, j + 1));
-    const double q = active(i, j) ? artificial_viscosity(rho, eos.sound_speed(rho, e), dU, c1, c2) : 0.0;
-    P(i, j) = eos.pressure(rho, e) + q;
+    const double q =
+        active(i, j) ? artificial_viscosity(rho, cell_sound_speed(mat, m, rho, e, i, j), dU, c1, c2) : 0.0;
+    P(i, j) = cell_pressure(mat, m, rho, e, i, j) + q;
   }
 };
 
@@ -263,14 +265,6 @@ struct FaceAdvectionKernel {
   }
 };
 
-//! Monotonised-central slope (van Leer's MC limiter) from the left and right differences: the centred
-//! difference where the data are smooth, zero at an extremum and next to a constant state.
-BLAST_HD inline double mc_slope(double left_diff, double right_diff) {
-  if (left_diff * right_diff <= 0.0) return 0.0;
-  const double c = 0.5 * (left_diff + right_diff);
-  const double m = 2.0 * (fabs(left_diff) < fabs(right_diff) ? left_diff : right_diff);
-  return fabs(c) < fabs(m) ? c : m;
-}
 
 //! Initial derivatives of the four CIP unknowns from their values (mc_slope() in x and in y).
 struct InitialDerivativesKernel {
@@ -289,8 +283,9 @@ struct InitialDerivativesKernel {
 //! Signal rate max((|u_c| + c)/dx, (|v_c| + c)/dy) [1/s] of one cell; +inf for an invalid active cell.
 struct SignalRate {
   GasStateReadView s;
+  MaterialReadView m;
   Field2D<const std::uint8_t> active;
-  EquationOfState eos;
+  GasMaterials mat;
   int nx;
   double dx, dy;
   BLAST_HD double operator()(index_t k) const {
@@ -299,23 +294,28 @@ struct SignalRate {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     const double uc = 0.5 * (s.u.f(i, j) + s.u.f(i + 1, j));
     const double vc = 0.5 * (s.v.f(i, j) + s.v.f(i, j + 1));
-    const double c = eos.sound_speed(rho, e);
+    const double c = cell_sound_speed(mat, m, rho, e, i, j);
     const double rx = (fabs(uc) + c) / dx, ry = (fabs(vc) + c) / dy;
     const double r = rx > ry ? rx : ry;
-    const bool ok = rho > 0.0 && e > 0.0 && r < 1e300;  // false for NaN as well
+    // Products' internal energy may be negative (measured from the JWL reference curve): in a two-material
+    // run the pressure must be positive instead.
+    const bool positive = mat.two ? cell_pressure(mat, m, rho, e, i, j) > 0.0 : e > 0.0;
+    const bool ok = rho > 0.0 && positive && r < 1e300;  // false for NaN as well
     return ok ? r : INFINITY;
   }
 };
 
 //! Sums for GasTotals, reducible on the device.
 struct TotalsSum {
-  double m, mx, my, ei, ek;
+  double m, mx, my, ei, ek, m1;
   BLAST_HD TotalsSum operator+(const TotalsSum& o) const {
-    return {m + o.m, mx + o.mx, my + o.my, ei + o.ei, ek + o.ek};
+    return {m + o.m, mx + o.mx, my + o.my, ei + o.ei, ek + o.ek, m1 + o.m1};
   }
 };
 struct TotalsOfCell {
   GasStateReadView s;
+  MaterialReadView materials;
+  bool two;
   Field2D<const std::uint8_t> active;
   int nx;
   double area;
@@ -323,7 +323,7 @@ struct TotalsOfCell {
   CellRegion region;
   BLAST_HD TotalsSum operator()(index_t k) const {
     const int j = static_cast<int>(k / nx), i = static_cast<int>(k - static_cast<index_t>(j) * nx);
-    if (!active(i, j) || !region.contains(g.cell_x(i), g.cell_y(j))) return {0, 0, 0, 0, 0};
+    if (!active(i, j) || !region.contains(g.cell_x(i), g.cell_y(j))) return {0, 0, 0, 0, 0, 0};
     const double m = s.rho.f(i, j) * area;
     // Momentum and kinetic energy live on the faces: each face carries the mass of its dual cell,
     // (rho_left + rho_right)/2 x area, and gives half of its share to each of its two cells.
@@ -333,7 +333,7 @@ struct TotalsOfCell {
     const double mb = 0.5 * (rho(i, j - 1) + rho(i, j)) * area, mt = 0.5 * (rho(i, j) + rho(i, j + 1)) * area;
     const double px = 0.5 * (ml * ul + mr * ur), py = 0.5 * (mb * vb + mt * vt);
     const double ke = 0.25 * (ml * ul * ul + mr * ur * ur + mb * vb * vb + mt * vt * vt);
-    return {m, px, py, m * s.e.f(i, j), ke};
+    return {m, px, py, m * s.e.f(i, j), ke, two ? materials.m1(i, j) * area : 0.0};
   }
 };
 
@@ -352,8 +352,9 @@ BLAST_HD inline double bilinear(Field2D<const double> F, double x0, double y0, d
 
 struct SampleKernel {
   GasStateReadView s;
+  MaterialReadView m;
   GasGrid g;
-  EquationOfState eos;
+  GasMaterials mat;
   const double* xy;
   GasSample* out;
   BLAST_HD void operator()(index_t k) const {
@@ -368,7 +369,12 @@ struct SampleKernel {
     r.e = bilinear(e, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
     r.u = bilinear(u, g.x_min, yc, g.dx, g.dy, g.nx, g.ny - 1, x, y);
     r.v = bilinear(v, xc, g.y_min, g.dx, g.dy, g.nx - 1, g.ny, x, y);
-    r.p = eos.pressure(r.rho, r.e);
+    double m1 = 0.0;
+    if (mat.two) {
+      r.alpha = bilinear(m.alpha, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
+      m1 = bilinear(m.m1, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
+    }
+    r.p = mat.pressure(r.rho, r.e, r.alpha, m1);
     out[k] = r;
   }
 };
@@ -379,7 +385,8 @@ struct SampleKernel {
 struct BoundaryFlowKernel {
   GasStateReadView s;
   Field2D<const double> P, Fx, Fy, Ex, Ey;
-  bool conservative;
+  Field2D<const double> Mx, My;  // products mass fluxes (two-material runs; else unread)
+  bool conservative, two;
   GasGrid g;
   BoundaryConditions bc;
   BLAST_HD TotalsSum operator()(index_t k) const {
@@ -387,14 +394,15 @@ struct BoundaryFlowKernel {
     const bool xside = k < 2 * ny;
     const bool low = xside ? k < ny : k - 2 * ny < nx;
     const int side = xside ? (low ? left : right) : (low ? bottom : top);
-    if (kind_of(bc, side) == BoundaryKind::periodic) return {0, 0, 0, 0, 0};  // what leaves comes back in
+    if (kind_of(bc, side) == BoundaryKind::periodic) return {0, 0, 0, 0, 0, 0};  // what leaves comes back in
     const int t = static_cast<int>(xside ? (low ? k : k - ny) : (low ? k - 2 * ny : k - 2 * ny - nx));
     const int b = low ? 0 : (xside ? nx - 1 : ny - 1), f = low ? 0 : (xside ? nx : ny);
     const double sgn = low ? -1.0 : 1.0, len = xside ? g.dy : g.dx;
     const int ci = xside ? b : t, cj = xside ? t : b, fi = xside ? f : t, fj = xside ? t : f;
     const double w = sgn * (xside ? s.u.f(fi, fj) : s.v.f(fi, fj));  // outward normal velocity
     const double wt = xside ? 0.5 * (s.v.f(ci, cj) + s.v.f(ci, cj + 1)) : 0.5 * (s.u.f(ci, cj) + s.u.f(ci + 1, cj));
-    double mass, internal;
+    double mass, internal, products = 0.0;
+    if (two) products = sgn * (xside ? Mx(fi, fj) : My(fi, fj));
     if (conservative) {
       mass = sgn * (xside ? Fx(fi, fj) : Fy(fi, fj));
       internal = sgn * (xside ? Ex(fi, fj) : Ey(fi, fj));
@@ -407,7 +415,7 @@ struct BoundaryFlowKernel {
     const double mx = xside ? sgn * normal_momentum : tangential_momentum;
     const double my = xside ? tangential_momentum : sgn * normal_momentum;
     const double energy = internal + mass * 0.5 * (w * w + wt * wt) + p * w;
-    return {mass * len, mx * len, my * len, energy * len, 0.0};
+    return {mass * len, mx * len, my * len, energy * len, 0.0, products * len};
   }
 };
 

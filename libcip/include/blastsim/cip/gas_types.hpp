@@ -11,13 +11,15 @@
 namespace blastsim::cip {
 
 //! Coefficients of the artificial viscosity, paper eq. (4). The paper does not give them. The defaults
-//! c1 = 0.25, c2 = 0.5 suit the (default) conservative transport, which puts shocks in the right place
-//! whatever the coefficients: less viscosity smears less (Sod's L1). The paper's non-conservative
-//! transport needs c1 = 1, c2 = 2: with the common 0.5 and 1 it runs the shock of the 277:1 jump 2.6 %
-//! slow, with 1 and 2 0.75 % (recommended_viscosity(); docs/gas-solver.md).
+//! c1 = 0.5, c2 = 1 suit the (default) conservative transport, which puts shocks in the right place whatever
+//! the coefficients: less viscosity smears shocks less, more damps the oscillations behind a slowly moving
+//! shock (Toro's test 5) and the start-up error behind Sod's contact; 0.5 and 1 keep every gas check
+//! (docs/gas-solver.md, G8-G9), where 0.25 and 0.5 let Sod's L1 converge at order 0.78 only. The paper's
+//! non-conservative transport needs c1 = 1, c2 = 2: with 0.5 and 1 it runs the shock of the 277:1 jump
+//! 2.6 % slow, with 1 and 2 0.75 % (recommended_viscosity()).
 struct ArtificialViscosity {
-  double linear = 0.25;    //!< c1 [-]
-  double quadratic = 0.5;  //!< c2 [-]
+  double linear = 0.5;     //!< c1 [-]
+  double quadratic = 1.0;  //!< c2 [-]
 };
 
 //! How values are carried by the flow (the advection phase).
@@ -28,7 +30,7 @@ enum class Transport {
 
 //! The viscosity coefficients measured to suit each transport (docs/gas-solver.md).
 inline ArtificialViscosity recommended_viscosity(Transport t) {
-  return t == Transport::paper ? ArtificialViscosity{1.0, 2.0} : ArtificialViscosity{0.25, 0.5};
+  return t == Transport::paper ? ArtificialViscosity{1.0, 2.0} : ArtificialViscosity{0.5, 1.0};
 }
 
 struct GasSolverOptions {
@@ -44,6 +46,7 @@ struct GasPoint {
   double internal_energy;  //!< [J/kg]
   double velocity_x;       //!< [m/s]
   double velocity_y;       //!< [m/s]
+  double products_fraction = 0.0;  //!< volume fraction of detonation products [-] (two-material runs)
 };
 
 //! Interpolated state at a sample point (bilinear from the staggered arrays).
@@ -53,6 +56,7 @@ struct GasSample {
   double u, v;  //!< [m/s]
   double p;     //!< [Pa]
   double e;     //!< [J/kg]
+  double alpha = 0;  //!< volume fraction of detonation products [-]
 };
 
 //! Integrals over the active cells (per unit depth of the 2-D domain). Momentum and kinetic energy are
@@ -64,6 +68,7 @@ struct GasTotals {
   double momentum_y = 0;       //!< [kg/s]
   double internal_energy = 0;  //!< [J/m]
   double kinetic_energy = 0;   //!< [J/m], of the face velocities with their dual-cell masses
+  double products_mass = 0;    //!< [kg/m] of detonation products (two-material runs)
   double total_energy() const { return internal_energy + kinetic_energy; }
 };
 
@@ -91,12 +96,14 @@ struct BoundaryOutflow {
   double momentum_x = 0;  //!< [kg/s] including the pressure impulse on the boundary
   double momentum_y = 0;  //!< [kg/s]
   double energy = 0;      //!< [J/m] internal + kinetic energy carried out, plus pressure work
+  double products_mass = 0;  //!< [kg/m] of detonation products carried out
 };
 
 //! Cell-centred copy of the state on the host (i fastest), for output.
 struct HostGasFields {
   int nx = 0, ny = 0;
   std::vector<double> rho, u, v, p, e;
+  std::vector<double> alpha;  //!< products volume fraction (empty in a one-material run)
   std::vector<std::uint8_t> active;  //!< 1 where the cell is advanced, 0 where inactive (immersed solid)
 };
 

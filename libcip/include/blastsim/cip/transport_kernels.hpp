@@ -28,11 +28,14 @@
 namespace blastsim::cip {
 
 
-//! Slope limiter (van Leer's monotonised-central bounds) on the CIP slope (derivative x spacing): the CIP
-//! slope where it has the sign of both one-sided differences, at most twice the smaller; else zero.
+//! Slope limiter (van Leer's monotonised-central bounds) on the CIP slope (derivative x spacing): where the
+//! CIP slope has the sign of both one-sided differences, it is raised to at least the smaller difference (the
+//! minmod slope: a CIP derivative that lags behind a steepening contact would smear it) and cut to at most
+//! twice it; else zero.
 BLAST_HD inline double limited_slope(double cip_slope, double left_diff, double right_diff) {
   if (left_diff * right_diff <= 0.0 || cip_slope * left_diff <= 0.0) return 0.0;
-  const double m = min_of(fabs(cip_slope), 2.0 * min_of(fabs(left_diff), fabs(right_diff)));
+  const double small = min_of(fabs(left_diff), fabs(right_diff));
+  const double m = min_of(max_of(fabs(cip_slope), small), 2.0 * small);
   return cip_slope > 0.0 ? m : -m;
 }
 
@@ -46,10 +49,16 @@ BLAST_HD inline double swept_value(double f_up, double g_n, double g_t, double w
 }
 
 //! Curvature allowance at a face between points 1 and 2 of f0 f1 | f2 f3: a fraction of the smaller
-//! second difference when both have the same sign (a smooth extremum), zero otherwise (after the
-//! monotonicity-preserving bounds of Suresh & Huynh, JCP 136 (1997) 83).
+//! second difference where the data have an extremum (first differences change sign) with same-signed
+//! second differences on both sides (a smooth extremum), zero otherwise (after the monotonicity-preserving
+//! bounds of Suresh & Huynh, JCP 136 (1997) 83). Without the extremum test the corner of a step onto a
+//! plateau passed as smooth and a density spike grew there (issue #15; docs/gas-solver.md "Contacts").
 BLAST_HD inline double extremum_slack(double f0, double f1, double f2, double f3, double fraction) {
-  const double a = f0 - 2.0 * f1 + f2, b = f1 - 2.0 * f2 + f3;
+  const double d0 = f1 - f0, d1 = f2 - f1, d2 = f3 - f2;
+  // Only where the differences change sign (an extremum, not a plateau beside a jump) is there an extremum.
+  const bool extremum = d0 * d1 < 0.0 || d1 * d2 < 0.0 || (d1 == 0.0 && d0 * d2 < 0.0);
+  if (!extremum) return 0.0;
+  const double a = d1 - d0, b = d2 - d1;
   return a * b <= 0.0 ? 0.0 : fraction * min_of(fabs(a), fabs(b));
 }
 
@@ -60,14 +69,15 @@ BLAST_HD inline double extremum_slack(double f0, double f1, double f2, double f3
 //! the slack (at most half the lower bound, so positive fields stay positive); elsewhere the slopes are
 //! held within van Leer's monotonised-central bounds (limited_slope()). Jumps stay monotone, smooth
 //! extrema keep second order. Fraction 0.2 measured: 0.1 costs order (1.93 on G4), 0.25 costs Sod's L1.
-BLAST_HD inline double swept_value_at(const CipFieldReadView& F, int axis, int ia, int ja, double w, double w_t,
+template <class Field>
+BLAST_HD inline double swept_value_at(const Field& F, int axis, int ia, int ja, double w, double w_t,
                                       double dt, double h, double h_t, Limiter limiter) {
   const int di = axis == 0 ? 1 : 0, dj = 1 - di;
   const int ib = ia + di, jb = ja + dj;
   const int iu = w >= 0.0 ? ia : ib, ju = w >= 0.0 ? ja : jb;
   double g_n = axis == 0 ? F.gx(iu, ju) : F.gy(iu, ju);
   double g_t = axis == 0 ? F.gy(iu, ju) : F.gx(iu, ju);
-  const Field2D<const double>& f = F.f;
+  const auto f = [&F](int i, int j) { return F.value(i, j); };
   if (limiter == Limiter::none) return swept_value(f(iu, ju), g_n, g_t, w, w_t, dt, h);
   double slack = extremum_slack(f(ia - di, ja - dj), f(ia, ja), f(ib, jb), f(ib + di, jb + dj), 0.2);
   const double c = f(iu, ju);
@@ -84,8 +94,86 @@ BLAST_HD inline double swept_value_at(const CipFieldReadView& F, int axis, int i
   return v < lo ? lo : (v > hi ? hi : v);
 }
 
+//! A CIP field seen through value(i, j), gx(i, j), gy(i, j), the interface swept_value_at() reads.
+struct CipValues {
+  CipFieldReadView F;
+  BLAST_HD double value(int i, int j) const { return F.f(i, j); }
+  BLAST_HD double gx(int i, int j) const { return F.gx(i, j); }
+  BLAST_HD double gy(int i, int j) const { return F.gy(i, j); }
+};
+
+//! Internal energy per unit volume rho e [J/m3] with its CIP derivatives from the product rule.
+struct EnergyDensityValues {
+  CipFieldReadView rho, e;
+  BLAST_HD double value(int i, int j) const { return rho.f(i, j) * e.f(i, j); }
+  BLAST_HD double gx(int i, int j) const { return e.f(i, j) * rho.gx(i, j) + rho.f(i, j) * e.gx(i, j); }
+  BLAST_HD double gy(int i, int j) const { return e.f(i, j) * rho.gy(i, j) + rho.f(i, j) * e.gy(i, j); }
+};
+
+//! Slope-limited swept value of a cell quantity without CIP derivatives: the upwind value q_up plus van Leer's
+//! monotonised-central slope of its two one-sided differences, over the region swept through the face. The
+//! three values run along the flow: q_back upstream of the upwind cell, q_up, q_across beyond the face.
+BLAST_HD inline double swept_mc(double q_back, double q_up, double q_across, double w, double dt, double h) {
+  return q_up + mc_slope(q_up - q_back, q_across - q_up) * 0.5 * (h - fabs(w) * dt) / h;
+}
+
+//! What crosses a face in a two-material run, per unit face velocity: mixture density, products partial
+//! density, internal energy per volume and the products volume fraction.
+struct MixtureFaceValues {
+  double rho, m1, rho_e, alpha;
+};
+
+//! One cell's state as the two-material reconstruction sees it.
+struct MixtureCell {
+  double rho, e, alpha, m1;
+};
+
+//! The reconstructed variables of one cell: volume fraction, phase densities (0 where the phase is absent)
+//! and pressure.
+struct MixturePrimitives {
+  double alpha, rho1, rho2, p;
+  bool has1, has2;  // each phase present (its phase density defined)
+};
+BLAST_HD inline MixturePrimitives mixture_primitives(const GasMaterials& mat, const MixtureCell& c) {
+  const double tiny = GasMaterials::kMinFraction;
+  MixturePrimitives q;
+  q.alpha = c.alpha;
+  q.p = mat.pressure(c.rho, c.e, c.alpha, c.m1);
+  q.has1 = c.alpha > tiny && c.m1 > 0.0;
+  q.has2 = c.alpha < 1.0 - tiny && c.rho > c.m1;
+  q.rho1 = c.alpha > tiny ? c.m1 / c.alpha : 0.0;
+  q.rho2 = c.alpha < 1.0 - tiny ? (c.rho - c.m1) / (1.0 - c.alpha) : 0.0;
+  return q;
+}
+
+//! Face values where products are near (docs/gas-solver.md, "Two materials"): the volume fraction alpha,
+//! the phase densities rho1, rho2 and the pressure p are reconstructed (swept_mc()) and the conserved
+//! quantities built from them, so that where p and the phase densities are uniform the fluxes of the partial
+//! densities and of rho e are those of alpha alone: a material interface moving with uniform p and u keeps
+//! them uniform (Abgrall, JCP 125 (1996) 150; Johnsen & Colonius, JCP 219 (2006) 715). The three cells run
+//! along the flow: `back` upstream of the upwind cell `up`, `across` beyond the face; w the face velocity.
+BLAST_HD inline MixtureFaceValues mixture_face_values(const GasMaterials& mat, const MixtureCell& back,
+                                                      const MixtureCell& up, const MixtureCell& across, double w,
+                                                      double dt, double h) {
+  const MixturePrimitives b = mixture_primitives(mat, back), u = mixture_primitives(mat, up),
+                          a = mixture_primitives(mat, across);
+  const double a_f = swept_mc(b.alpha, u.alpha, a.alpha, w, dt, h);
+  const double p_f = swept_mc(b.p, u.p, a.p, w, dt, h);
+  // A phase missing in a neighbour has no phase density there: the upwind value alone.
+  const double r1_f = b.has1 && u.has1 && a.has1 ? swept_mc(b.rho1, u.rho1, a.rho1, w, dt, h) : u.rho1;
+  const double r2_f = b.has2 && u.has2 && a.has2 ? swept_mc(b.rho2, u.rho2, a.rho2, w, dt, h) : u.rho2;
+  MixtureFaceValues v;
+  v.alpha = a_f;
+  v.m1 = a_f * r1_f;
+  v.rho = v.m1 + (1.0 - a_f) * r2_f;
+  v.rho_e = mat.energy_density(p_f, a_f, r1_f, r2_f);
+  return v;
+}
+
 //! Mass and internal-energy fluxes [kg/(m2 s), J/(m2 s)] through x-faces (axis 0) or y-faces (axis 1).
-//! Faces beside an inactive cell are closed.
+//! Faces beside an inactive cell are closed. In a two-material run, faces with products among the four
+//! cells along their normal take mixture_face_values() and also give the products mass flux, the volume
+//! fraction flux w alpha^ and the open-face velocity (for the alpha equation); elsewhere those are zero.
 struct MassFluxKernel {
   int axis;
   GasStateReadView s;
@@ -93,24 +181,50 @@ struct MassFluxKernel {
   Field2D<double> mass_flux, energy_flux;
   double dt, h, h_t;
   Limiter limiter;
+  GasMaterials mat;
+  MaterialReadView materials;                      // read in two-material runs only
+  Field2D<double> products_flux, alpha_flux, volume_flux;  // written in two-material runs only
   BLAST_HD void operator()(int i, int j) const {
     const int im = axis == 0 ? i - 1 : i, jm = axis == 0 ? j : j - 1;
     if (!active(im, jm) || !active(i, j)) {
       mass_flux(i, j) = 0.0;
       energy_flux(i, j) = 0.0;
+      if (mat.two) products_flux(i, j) = alpha_flux(i, j) = volume_flux(i, j) = 0.0;
       return;
+    }
+    if (mat.two) {
+      const double w = axis == 0 ? s.u.f(i, j) : s.v.f(i, j);
+      const int di = axis == 0 ? 1 : 0, dj = 1 - di;
+      // The four cells along the normal: c0 c1 | c2 c3, the face between c1 = (im, jm) and c2 = (i, j).
+      auto cell = [&](int ci, int cj) {
+        return MixtureCell{s.rho.f(ci, cj), s.e.f(ci, cj), materials.alpha(ci, cj), materials.m1(ci, cj)};
+      };
+      const MixtureCell c0 = cell(im - di, jm - dj), c1 = cell(im, jm), c2 = cell(i, j), c3 = cell(i + di, j + dj);
+      volume_flux(i, j) = w;
+      if (c0.alpha > 0.0 || c1.alpha > 0.0 || c2.alpha > 0.0 || c3.alpha > 0.0) {
+        const bool forward = w >= 0.0;
+        const MixtureFaceValues v =
+            forward ? mixture_face_values(mat, c0, c1, c2, w, dt, h) : mixture_face_values(mat, c3, c2, c1, w, dt, h);
+        mass_flux(i, j) = w * v.rho;
+        energy_flux(i, j) = w * v.rho_e;
+        products_flux(i, j) = w * v.m1;
+        alpha_flux(i, j) = w * v.alpha;
+        return;
+      }
+      products_flux(i, j) = alpha_flux(i, j) = 0.0;
     }
     const double w = axis == 0 ? s.u.f(i, j) : s.v.f(i, j);
     const Field2D<const double> t = axis == 0 ? s.v.f : s.u.f;  // transverse velocity, averaged to the face
     const double w_t = axis == 0 ? 0.25 * (t(im, j) + t(i, j) + t(im, j + 1) + t(i, j + 1))
                                  : 0.25 * (t(i, jm) + t(i, j) + t(i + 1, jm) + t(i + 1, j));
-    const double F = w * swept_value_at(s.rho, axis, im, jm, w, w_t, dt, h, h_t, limiter);
-    mass_flux(i, j) = F;
-    energy_flux(i, j) = F * swept_value_at(s.e, axis, im, jm, w, w_t, dt, h, h_t, limiter);
+    mass_flux(i, j) = w * swept_value_at(CipValues{s.rho}, axis, im, jm, w, w_t, dt, h, h_t, limiter);
+    energy_flux(i, j) = w * swept_value_at(EnergyDensityValues{s.rho, s.e}, axis, im, jm, w, w_t, dt, h, h_t, limiter);
   }
 };
 
-//! Cell update of mass and internal energy from the face fluxes.
+//! Cell update of mass and internal energy from the face fluxes; in a two-material run also the products'
+//! partial density (flux form, conserved) and volume fraction: alpha_t + u . grad(alpha) = 0 as
+//! alpha - dt (div(u alpha^) - alpha div(u)) with the same face values (alpha kept in [0, 1] against round-off).
 struct CellFluxUpdateKernel {
   GasStateReadView s;
   GasStateView n;
@@ -118,6 +232,9 @@ struct CellFluxUpdateKernel {
   Field2D<const double> Fx, Fy, Ex, Ey;
   Field2D<double> rho_e;
   double dt, dx, dy;
+  bool two;
+  MaterialView materials;                     // updated in place (two-material runs)
+  Field2D<const double> Mx, My, Ax, Ay, Wx, Wy;  // products, alpha and volume fluxes
   BLAST_HD void operator()(int i, int j) const {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     if (!active(i, j)) {
@@ -127,6 +244,13 @@ struct CellFluxUpdateKernel {
     }
     n.rho.f(i, j) = rho - dt * ((Fx(i + 1, j) - Fx(i, j)) / dx + (Fy(i, j + 1) - Fy(i, j)) / dy);
     rho_e(i, j) = rho * e - dt * ((Ex(i + 1, j) - Ex(i, j)) / dx + (Ey(i, j + 1) - Ey(i, j)) / dy);
+    if (!two) return;
+    materials.m1(i, j) -= dt * ((Mx(i + 1, j) - Mx(i, j)) / dx + (My(i, j + 1) - My(i, j)) / dy);
+    const double a = materials.alpha(i, j);
+    const double div_a = (Ax(i + 1, j) - Ax(i, j)) / dx + (Ay(i, j + 1) - Ay(i, j)) / dy;
+    const double div_u = (Wx(i + 1, j) - Wx(i, j)) / dx + (Wy(i, j + 1) - Wy(i, j)) / dy;
+    const double a_new = a - dt * (div_a - a * div_u);
+    materials.alpha(i, j) = a_new < 0.0 ? 0.0 : (a_new > 1.0 ? 1.0 : a_new);
   }
 };
 
@@ -178,27 +302,27 @@ struct MomentumKernel {
         const double Fd = 0.5 * (Fx(wx(c), j) + Fx(wx(c) + 1, j));
         add(sign, Fd, dx, [&] {
           const double w = 0.5 * (u(c, j) + u(c + 1, j)), w_t = 0.5 * (v(c, j) + v(c, j + 1));
-          return swept_value_at(V, 0, c, j, w, w_t, dt, dx, dy, limiter);
+          return swept_value_at(CipValues{V}, 0, c, j, w, w_t, dt, dx, dy, limiter);
         });
         // Across (y): dual face at the corner on y-face row r = j or j+1, between u(i, r-1) and u(i, r).
         const int r = side == 0 ? j : j + 1;
         const double Fc = 0.5 * (Fy(ia, r) + Fy(i, r));
         add(sign, Fc, dy, [&] {
           const double wc = 0.5 * (v(ia, r) + v(i, r)), wc_t = 0.5 * (u(i, r - 1) + u(i, r));
-          return swept_value_at(V, 1, i, r - 1, wc, wc_t, dt, dy, dx, limiter);
+          return swept_value_at(CipValues{V}, 1, i, r - 1, wc, wc_t, dt, dy, dx, limiter);
         });
       } else {
         const int c = side == 0 ? j - 1 : j;
         const double Fd = 0.5 * (Fy(i, wy(c)) + Fy(i, wy(c) + 1));
         add(sign, Fd, dy, [&] {
           const double w = 0.5 * (v(i, c) + v(i, c + 1)), w_t = 0.5 * (u(i, c) + u(i + 1, c));
-          return swept_value_at(V, 1, i, c, w, w_t, dt, dy, dx, limiter);
+          return swept_value_at(CipValues{V}, 1, i, c, w, w_t, dt, dy, dx, limiter);
         });
         const int r = side == 0 ? i : i + 1;
         const double Fc = 0.5 * (Fx(r, ja) + Fx(r, j));
         add(sign, Fc, dx, [&] {
           const double wc = 0.5 * (u(r, ja) + u(r, j)), wc_t = 0.5 * (v(r - 1, j) + v(r, j));
-          return swept_value_at(V, 0, r - 1, j, wc, wc_t, dt, dx, dy, limiter);
+          return swept_value_at(CipValues{V}, 0, r - 1, j, wc, wc_t, dt, dx, dy, limiter);
         });
       }
     }
@@ -222,13 +346,21 @@ struct MomentumKernel {
   }
 };
 
+//! Largest fraction of a cell's internal energy that the kinetic-energy correction may take in one step.
+//! In a near-vacuum rarefaction (Toro's test 2) the faces beside an emptying cell gain more kinetic energy
+//! from the momentum transport than they carried in, and the whole correction would leave the cell a
+//! negative energy; what exceeds this fraction is not taken but counted as energy added to the gas.
+inline constexpr double kMaxCorrectionFraction = 0.5;
+
 //! Internal energy of a cell: flux-form rho e plus half the kinetic energy dissipated on each of its four
 //! faces (all of it for a face on the outer boundary or next to an inactive cell: no gas cell on the other
-//! side takes the other half).
+//! side takes the other half). A net loss is bounded by kMaxCorrectionFraction of rho e; the part not
+//! taken is summed in `added` [J/m3] (GasSolver::positivity_energy()).
 struct EnergyUpdateKernel {
   GasStateView n;
   Field2D<const std::uint8_t> active;
   Field2D<const double> rho_e, Du, Dv;
+  Field2D<double> added;
   int nx, ny;
   bool periodic_x, periodic_y;
   BLAST_HD void operator()(int i, int j) const {
@@ -244,7 +376,10 @@ struct EnergyUpdateKernel {
     const double wb = (!periodic_y && j == 0) || !active(i, jb) ? 1.0 : 0.5;
     const double wt = (!periodic_y && j + 1 == ny) || !active(i, jt) ? 1.0 : 0.5;
     const double heat = wl * Du(i, j) + wr * Du(ir, j) + wb * Dv(i, j) + wt * Dv(i, jt);
-    n.e.f(i, j) = (rho_e(i, j) + heat) / n.rho.f(i, j);
+    // (Products' rho e may be negative: no bound there.)
+    const double floor = rho_e(i, j) > 0.0 ? -kMaxCorrectionFraction * rho_e(i, j) : -INFINITY;
+    if (heat < floor) added(i, j) += floor - heat;
+    n.e.f(i, j) = (rho_e(i, j) + (heat < floor ? floor : heat)) / n.rho.f(i, j);
   }
 };
 

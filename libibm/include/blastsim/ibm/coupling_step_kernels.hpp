@@ -101,11 +101,16 @@ struct NewMaskKernel {
 //! own new value from the old ones (a gather: no atomics, order-independent). The ledger counts the
 //! transitions and the mass and energy they create: the ambient gas of uncovered cells, minus the gas of a
 //! covered cell with no stable cell in its block. `reset` (the first call): covered cells take the ambient
-//! state, nothing moves and nothing is counted.
+//! state, nothing moves and nothing is counted. In a two-material run the products' partial density moves
+//! with the mass and the receiving cell's volume fraction becomes the mass-weighted mean of its own and the
+//! given gas's; a cell that changes state holds air.
 struct TransitionKernel {
   Field2D<const std::uint8_t> old_active, new_active;
   Field2D<const double> rho, e, u, v;
   Field2D<double> rho_next, e_next;
+  bool two;
+  cip::MaterialReadView materials;  // read when two
+  cip::MaterialView next;           // products alpha and m1 after the move (written when two)
   Field2D<std::uint8_t> changed;
   double* ledger;  // 4 per cell (i + nx j)
   int nx, ny;
@@ -136,6 +141,7 @@ struct TransitionKernel {
 
   BLAST_HD void operator()(int i, int j) const {
     double m = rho(i, j), E = rho(i, j) * e(i, j);  // per cell area
+    double m1 = two ? materials.m1(i, j) : 0.0, am = two ? materials.alpha(i, j) * m : 0.0;  // products; alpha x mass
     bool moved = old_active(i, j) != new_active(i, j);
     double* led = ledger + 4 * (static_cast<index_t>(j) * nx + i);
     if (moved) {  // covered or uncovered: the ambient state
@@ -148,6 +154,7 @@ struct TransitionKernel {
         }
       }
       m = rho_ambient, E = rho_ambient * e_ambient;
+      m1 = 0.0, am = 0.0;
     } else if (stable(i, j) && !reset) {
       for (int nj = j - 1; nj <= j + 1; ++nj)
         for (int ni = i - 1; ni <= i + 1; ++ni) {
@@ -157,12 +164,20 @@ struct TransitionKernel {
           const double share = 1.0 / (a > 0 ? a : count_stable_block(ni, nj));
           m += share * rho(ni, nj);
           E += share * handed_energy(ni, nj);
+          if (two) {
+            m1 += share * materials.m1(ni, nj);
+            am += share * materials.alpha(ni, nj) * rho(ni, nj);
+          }
           moved = true;
         }
     }
     changed(i, j) = moved;
     rho_next(i, j) = m;
     e_next(i, j) = moved ? E / m : e(i, j);
+    if (two) {
+      next.m1(i, j) = m1;
+      next.alpha(i, j) = moved ? am / m : materials.alpha(i, j);
+    }
   }
 };
 
@@ -174,6 +189,9 @@ struct ApplyTransitionKernel {
   Field2D<const double> rho_next, e_next, u_imposed, v_imposed;
   Field2D<std::uint8_t> active;
   cip::GasStateView s;
+  bool two;
+  cip::MaterialReadView next;
+  cip::MaterialView materials;
   BLAST_HD void operator()(int i, int j) const {
     if (active(i, j) && !new_active(i, j)) {
       s.u.f(i, j) = u_imposed(i, j), s.u.f(i + 1, j) = u_imposed(i + 1, j);
@@ -183,6 +201,7 @@ struct ApplyTransitionKernel {
     if (!changed(i, j)) return;
     s.rho.f(i, j) = rho_next(i, j), s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
     s.e.f(i, j) = e_next(i, j), s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
+    if (two) materials.alpha(i, j) = next.alpha(i, j), materials.m1(i, j) = next.m1(i, j);
   }
 };
 
@@ -195,7 +214,8 @@ struct ApplyTransitionKernel {
 struct EdgePressureKernel {
   fdem::RockView rock;
   cip::GasGrid g;
-  cip::EquationOfState eos;
+  cip::GasMaterials mat;
+  cip::MaterialReadView materials;  // read in two-material runs
   Field2D<const std::uint8_t> active;
   Field2D<const double> rho, e;
   double ambient_pressure;
@@ -211,7 +231,7 @@ struct EdgePressureKernel {
     const int fj = static_cast<int>(floor((my + off * n.y - g.y_min) / g.dy));
     double p = ambient_pressure;
     if (fi >= 0 && fi < g.nx && fj >= 0 && fj < g.ny && active(fi, fj)) {
-      p = eos.pressure(rho(fi, fj), e(fi, fj));
+      p = cip::cell_pressure(mat, materials, rho(fi, fj), e(fi, fj), fi, fj);
     } else if (kind == fdem::kEdgeBoundary) {
       const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
       double best = 1e300;
@@ -219,7 +239,7 @@ struct EdgePressureKernel {
         for (int i = imax(0, ci - 2); i <= imin(g.nx - 1, ci + 2); ++i) {
           if (!active(i, j)) continue;
           const double dx = g.cell_x(i) - mx, dy = g.cell_y(j) - my, d = dx * dx + dy * dy;
-          if (d < best) best = d, p = eos.pressure(rho(i, j), e(i, j));
+          if (d < best) best = d, p = cip::cell_pressure(mat, materials, rho(i, j), e(i, j), i, j);
         }
     }
     rock.edge_pressure[s] = p;

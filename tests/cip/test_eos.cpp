@@ -1,0 +1,95 @@
+//! \file test_eos.cpp
+//! \brief docs/validation.md G10: the JWL equation of state of detonation products against its closed forms (principal
+//! isentrope, ideal-gas limit, sound speed as the isentropic derivative) and its parameter checks.
+#include "blastsim/cip/eos.hpp"
+#include "blastsim/core/error.hpp"
+#include "catch.hpp"
+
+#include <cmath>
+#include <string>
+
+using namespace blastsim;
+
+namespace {
+
+//! Integrates the isentrope de/drho = p(rho, e) / rho^2 (first law with no heat) from (rho, e) to rho_end by
+//! classical Runge-Kutta in n steps; returns e at rho_end.
+double isentrope_energy_at(const cip::EquationOfState& eos, double rho, double e, double rho_end, int n = 200) {
+  const double h = (rho_end - rho) / n;
+  auto f = [&](double r, double en) { return eos.pressure(r, en) / (r * r); };
+  for (int k = 0; k < n; ++k) {
+    const double k1 = f(rho, e), k2 = f(rho + h / 2, e + h / 2 * k1), k3 = f(rho + h / 2, e + h / 2 * k2),
+                 k4 = f(rho + h, e + h * k3);
+    e += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    rho += h;
+  }
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("G10 JWL products: isentrope, ideal-gas limit, sound speed, inverse", "[cip][G10][eos]") {
+  for (const cip::JwlPreset& preset : cip::kJwlPresets) {
+    const cip::EquationOfState eos = cip::EquationOfState::jwl_products(preset.p);
+    const cip::JwlParameters& j = preset.p;
+    // Along the principal isentrope the JWL pressure at rho0/V with the isentrope's energy E_s(V)/rho0 is
+    // p_s(V): the closed forms of the isentrope and of p(rho, e) agree.
+    for (double V : {0.8, 1.0, 2.0, 7.0}) {
+      const double rho = j.rho0 / V, e = j.isentrope_energy(V) / j.rho0;
+      CHECK_THAT(eos.pressure(rho, e), WithinRel(j.isentrope_pressure(V), 1e-12));
+    }
+    // Far expanded (V = 200) the products are an ideal gas with gamma = 1 + w.
+    const double rho_far = j.rho0 / 200, e_far = 1e5;
+    const double gamma_far = 1 + eos.pressure(rho_far, e_far) / (rho_far * e_far);
+    const double c_far = eos.sound_speed(rho_far, e_far);
+    CHECK_THAT(gamma_far, WithinRel(1 + j.omega, 1e-9));
+    CHECK_THAT(c_far * c_far, WithinRel((1 + j.omega) * eos.pressure(rho_far, e_far) / rho_far, 1e-9));
+    // c^2 = (dp/drho) along an isentrope: central difference over +-1e-4 rho, the isentrope integrated by RK4, at
+    // states on and off the principal isentrope (a shocked, hotter state: 1.5 times its energy).
+    double worst = 0;
+    for (double V : {1.0, 3.0, 20.0}) {
+      for (double heat : {1.0, 1.5}) {
+        const double rho = j.rho0 / V, e = heat * j.isentrope_energy(V) / j.rho0, d = 1e-4 * rho;
+        const double p_hi = eos.pressure(rho + d, isentrope_energy_at(eos, rho, e, rho + d));
+        const double p_lo = eos.pressure(rho - d, isentrope_energy_at(eos, rho, e, rho - d));
+        const double c = eos.sound_speed(rho, e);
+        const double rel = std::fabs((p_hi - p_lo) / (2 * d) / (c * c) - 1);
+        worst = std::fmax(worst, rel);
+        CHECK(rel <= 1e-6);
+        // The inverse e(rho, p).
+        CHECK_THAT(eos.internal_energy(rho, eos.pressure(rho, e)), WithinRel(e, 1e-12));
+      }
+    }
+    std::printf("G10 %s (%s): p_s(V=1) = %.4f GPa, gamma at V = 200: %.6f (1 + w = %.2f), sound speed against the "
+                "isentropic derivative: worst %.1e\n",
+                preset.name, preset.source, j.isentrope_pressure(1.0) / 1e9, gamma_far, 1 + j.omega, worst);
+  }
+  // The figure for ANFO: p_s(V = 1) = 1.61 GPa.
+  CHECK_THAT(cip::EquationOfState::jwl_preset("ANFO").p.isentrope_pressure(1.0), WithinRel(1.61e9, 0.01));
+}
+
+TEST_CASE("G10 JWL parameters: bad values are refused by name", "[cip][G10][eos]") {
+  const cip::JwlParameters anfo = cip::EquationOfState::jwl_preset("ANFO").p;
+  auto refused = [&](cip::JwlParameters p, const char* what) {
+    try {
+      cip::EquationOfState::jwl_products(p);
+    } catch (const InputError& e) {
+      return std::string(e.what()).find(what) != std::string::npos;
+    }
+    return false;
+  };
+  cip::JwlParameters p = anfo;
+  p.R1 = p.R2;
+  CHECK(refused(p, "R1"));
+  p = anfo;
+  p.omega = 0;
+  CHECK(refused(p, "w ="));
+  p = anfo;
+  p.rho0 = -800;
+  CHECK(refused(p, "rho0"));
+  p = anfo;
+  p.A = NAN;
+  CHECK(refused(p, "A ="));
+  CHECK_NOTHROW(cip::EquationOfState::jwl_products(anfo));
+  CHECK_THROWS_AS(cip::EquationOfState::jwl_preset("dynamite"), InputError);
+}
