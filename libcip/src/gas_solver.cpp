@@ -394,6 +394,11 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   outflow_ = r.value<BoundaryOutflow>("gas.outflow");
   if (!std::isfinite(time_) || time_ < 0) r.fail("gas.time", "not a finite time >= 0");
   if (steps_ < 0) r.fail("gas.steps", "negative");
+  // The material fields exist exactly in a two-material run (an empty record matches a one-gas case only).
+  const size_t material_size = materials_.two ? static_cast<size_t>(grid_.padded_shape().size()) : 0;
+  if (a_->alpha.size() != material_size || a_->m1.size() != material_size)
+    r.fail("gas.alpha", materials_.two ? "empty: a checkpoint of a one-gas run, this case has detonation products"
+                                       : "present: a checkpoint of a run with detonation products, this case has one gas");
   // The masks are flags: anything but 0 and 1 is damage.
   const std::pair<const char*, const DeviceVector<std::uint8_t>*> masks[] = {
       {"gas.cell_active", &a_->immersed.cell_active},

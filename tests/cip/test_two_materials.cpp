@@ -3,6 +3,7 @@
 //! uniform, shock tubes of products into air against the exact two-material Riemann solution, positivity at a density
 //! ratio of 1e4, each material's mass and the total energy conserved, checkpoint and restart bit for bit.
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/error.hpp"
 #include "catch.hpp"
 #include "gas_cases.hpp"
 #include "mie_gruneisen_riemann.hpp"
@@ -226,6 +227,14 @@ TEST_CASE("G11 closed box with a products disc: each material's mass and the ene
     rd.finish();
   }
   advance(r, 100);
+  // The checkpoint of this two-material run is refused by a one-gas solver of the same grid.
+  {
+    cip::GasSolverOptions opt;
+    opt.boundaries = cip::BoundaryConditions::all(cip::BoundaryKind::wall);
+    cip::GasSolver one(cip::GasGrid::from_box(n, n, -1, 1, -1, 1), mat.air, opt);
+    CheckpointReader rd(path);
+    CHECK_THROWS_AS(one.read_checkpoint(rd), InputError);
+  }
   const cip::HostGasFields a = s.to_host(), b = r.to_host();
   CHECK(a.rho == b.rho);
   CHECK(a.e == b.e);

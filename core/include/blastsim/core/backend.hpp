@@ -143,15 +143,16 @@ const T* device_ptr(const DeviceVector<T>& v) {
   return thrust::raw_pointer_cast(v.data());
 }
 
-//! Non-owning view of a device vector holding a padded 2-D array.
+//! Non-owning view of a device vector holding a padded 2-D array. An empty vector is an absent field (e.g. the
+//! material fields of a one-gas run): its view must not be read.
 template <class T>
 Field2D<T> make_field_view(DeviceVector<T>& v, PaddedShape s) {
-  assert(static_cast<index_t>(v.size()) == s.size());
+  assert(v.empty() || static_cast<index_t>(v.size()) == s.size());
   return Field2D<T>{device_ptr(v), s};
 }
 template <class T>
 Field2D<const T> make_field_view(const DeviceVector<T>& v, PaddedShape s) {
-  assert(static_cast<index_t>(v.size()) == s.size());
+  assert(v.empty() || static_cast<index_t>(v.size()) == s.size());
   return Field2D<const T>{device_ptr(v), s};
 }
 
@@ -159,7 +160,7 @@ Field2D<const T> make_field_view(const DeviceVector<T>& v, PaddedShape s) {
 template <class T>
 std::vector<T> to_host(const DeviceVector<T>& v) {
   std::vector<T> out(v.size());
-  thrust::copy(v.begin(), v.end(), out.begin());
+  if (!v.empty()) thrust::copy(v.begin(), v.end(), out.begin());  // (an empty range has no data pointer)
   return out;
 }
 
@@ -167,7 +168,7 @@ std::vector<T> to_host(const DeviceVector<T>& v) {
 template <class T>
 void copy_from_host(DeviceVector<T>& v, const std::vector<T>& host) {
   v.resize(host.size());
-  thrust::copy(host.begin(), host.end(), v.begin());
+  if (!host.empty()) thrust::copy(host.begin(), host.end(), v.begin());
 }
 
 }  // namespace blastsim
