@@ -31,19 +31,16 @@ BLAST_HD inline double outflow_face_from_state(const BasicGasStateView<T>& s, co
   const double sign = low ? -1.0 : 1.0;
   auto at = [&](const auto& F, int k) { return xside ? F(k, t) : F(t, k); };
   const double rho = at(s.rho.f, b), e = at(s.e.f, b);
-  // Cell pressure and sound speed with the material fields of a two-material run.
-  auto pressure_of = [&](int k, double r, double en) {
-    return ctx.mat.two ? ctx.mat.pressure(r, en, at(ctx.materials.alpha, k), at(ctx.materials.m1, k))
-                       : ctx.mat.air.pressure(r, en);
-  };
-  const double p_b = pressure_of(b, rho, e), p_i = pressure_of(bi, at(s.rho.f, bi), at(s.e.f, bi));
+  // Pressures and the boundary cell's sound speed, with the material fields in a two-material run.
+  const PressureSound b_state = cell_pressure_and_sound_speed(ctx.mat, ctx.materials, rho, e, xside ? b : t, xside ? t : b);
+  const double p_b = b_state.p;
+  const double p_i = cell_pressure(ctx.mat, ctx.materials, at(s.rho.f, bi), at(s.e.f, bi), xside ? bi : t, xside ? t : bi);
   double p_face = 1.5 * p_b - 0.5 * p_i;
   if (!(p_face > 0.0)) p_face = p_b;
   const int r = side == left ? t : side == right ? g.ny + t : side == bottom ? 2 * g.ny + t : 2 * g.ny + g.nx + t;
   const Field2D<T> w = xside ? s.u.f : s.v.f;
   return outflow_face_velocity(sign * at(w, fi), ctx.reference.velocity[r], p_face, ctx.reference.pressure[r], rho,
-                               ctx.mat.two ? ctx.mat.sound_speed(rho, e, at(ctx.materials.alpha, b), at(ctx.materials.m1, b))
-                                           : ctx.mat.air.sound_speed(rho, e));
+                               b_state.c);
 }
 
 }  // namespace blastsim::cip

@@ -143,7 +143,10 @@ struct GasMaterials {
   //! 2002, eq. 2.9), c_k at the phase density and the common pressure; NaN for an invalid state.
   BLAST_HD double sound_speed(double rho, double e, double alpha, double m1) const {
     if (!two || !(alpha > kMinFraction)) return air.sound_speed(rho, e);
-    const double p = pressure(rho, e, alpha, m1);
+    return mixture_sound_speed(rho, alpha, m1, pressure(rho, e, alpha, m1));
+  }
+  //! The mixture sound speed of a cell with products (alpha > kMinFraction) whose pressure p [Pa] is known.
+  BLAST_HD double mixture_sound_speed(double rho, double alpha, double m1, double p) const {
     const double a2 = 1.0 - alpha, m2 = rho - m1;
     const double xi = alpha / products.gruneisen() + a2 / air.gruneisen();
     double sum = 0.0;

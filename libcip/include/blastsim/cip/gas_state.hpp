@@ -57,10 +57,16 @@ BLAST_HD inline double cell_pressure(const GasMaterials& mat, const MaterialRead
                                      int j) {
   return mat.two ? mat.pressure(rho, e, m.alpha(i, j), m.m1(i, j)) : mat.air.pressure(rho, e);
 }
-//! Sound speed [m/s] of cell (i, j), likewise.
-BLAST_HD inline double cell_sound_speed(const GasMaterials& mat, const MaterialReadView& m, double rho, double e,
-                                        int i, int j) {
-  return mat.two ? mat.sound_speed(rho, e, m.alpha(i, j), m.m1(i, j)) : mat.air.sound_speed(rho, e);
+//! Pressure [Pa] and sound speed [m/s] of cell (i, j), the mixture pressure computed once.
+struct PressureSound {
+  double p, c;
+};
+BLAST_HD inline PressureSound cell_pressure_and_sound_speed(const GasMaterials& mat, const MaterialReadView& m,
+                                                            double rho, double e, int i, int j) {
+  if (!mat.two) return {mat.air.pressure(rho, e), mat.air.sound_speed(rho, e)};
+  const double alpha = m.alpha(i, j), m1 = m.m1(i, j);
+  const double p = mat.pressure(rho, e, alpha, m1);
+  return {p, alpha > GasMaterials::kMinFraction ? mat.mixture_sound_speed(rho, alpha, m1, p) : mat.air.sound_speed(rho, e)};
 }
 
 

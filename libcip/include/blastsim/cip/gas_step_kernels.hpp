@@ -37,9 +37,9 @@ struct PressureKernel {
   BLAST_HD void operator()(int i, int j) const {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     const double dU = velocity_jump(s.u.f(i, j), s.u.f(i + 1, j), s.v.f(i, j), s.v.f(i, j + 1));
-    const double q =
-        active(i, j) ? artificial_viscosity(rho, cell_sound_speed(mat, m, rho, e, i, j), dU, c1, c2) : 0.0;
-    P(i, j) = cell_pressure(mat, m, rho, e, i, j) + q;
+    const PressureSound ps = cell_pressure_and_sound_speed(mat, m, rho, e, i, j);
+    const double q = active(i, j) ? artificial_viscosity(rho, ps.c, dU, c1, c2) : 0.0;
+    P(i, j) = ps.p + q;
   }
 };
 
@@ -294,12 +294,13 @@ struct SignalRate {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     const double uc = 0.5 * (s.u.f(i, j) + s.u.f(i + 1, j));
     const double vc = 0.5 * (s.v.f(i, j) + s.v.f(i, j + 1));
-    const double c = cell_sound_speed(mat, m, rho, e, i, j);
+    const PressureSound ps = cell_pressure_and_sound_speed(mat, m, rho, e, i, j);
+    const double c = ps.c;
     const double rx = (fabs(uc) + c) / dx, ry = (fabs(vc) + c) / dy;
     const double r = rx > ry ? rx : ry;
     // Products' internal energy may be negative (measured from the JWL reference curve): in a two-material
     // run the pressure must be positive instead.
-    const bool positive = mat.two ? cell_pressure(mat, m, rho, e, i, j) > 0.0 : e > 0.0;
+    const bool positive = mat.two ? ps.p > 0.0 : e > 0.0;
     const bool ok = rho > 0.0 && positive && r < 1e300;  // false for NaN as well
     return ok ? r : INFINITY;
   }
