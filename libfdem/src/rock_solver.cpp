@@ -246,6 +246,10 @@ void RockSolver::step(double dt) {
   update_nodes(dt);
   time_ += dt;
   ++steps_;
+  if (probes_ > 0)
+    for_each_index("fdem.probes", probes_,
+                   ProbePeakKernel{device_ptr(a_->probe_station), device_ptr(a_->nodes.vx), device_ptr(a_->nodes.vy),
+                                   device_ptr(a_->probe_peak), time_});
   // Largest speed (infinite if any is not finite): drives the contact rebuild and catches instability.
   const NodeMotion<Access::read> m = a_->nodes.read();
   const double* vx = m.vx;
@@ -381,6 +385,74 @@ void RockSolver::break_joints(const std::vector<int>& joints) {
   copy_from_host(a.joints.damage, damage);
 }
 
+std::vector<int> RockSolver::fragment_labels() const {
+  detail::RockArrays& a = *a_;
+  a.label_a.resize(triangles_), a.label_b.resize(triangles_);
+  thrust::sequence(thrust::device, a.label_a.begin(), a.label_a.end());
+  const FragmentLinks links{device_ptr(a.edge_params.neighbour), device_ptr(a.edge_params.joint), device_ptr(a.joints.broken)};
+  int* in = device_ptr(a.label_a);
+  int* out = device_ptr(a.label_b);
+  // Each sweep at least halves the label chains (pointer jumping) or carries a label one triangle further,
+  // so the count is bounded by the triangles; the bound only guards against a logic error.
+  for (int sweep = 0; sweep <= triangles_; ++sweep) {
+    for_each_index("fdem.fragments.sweep", triangles_, LabelSweepKernel{links, in, out});
+    const int* before = in;
+    const int* after = out;
+    const int changed = reduce_max("fdem.fragments.changed", triangles_, 0,
+                                   [=] BLAST_HD(index_t t) { return before[t] != after[t] ? 1 : 0; });
+    std::swap(in, out);
+    if (!changed) return to_host(in == device_ptr(a.label_a) ? a.label_a : a.label_b);
+  }
+  throw std::logic_error("fragment_labels: label propagation did not converge");
+}
+
+void RockSolver::set_probes(const std::vector<std::array<double, 2>>& points) {
+  const std::vector<double> px = to_host(a_->node_params.x0), py = to_host(a_->node_params.y0);
+  std::vector<ProbeStation> stations;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const double x = points[k][0], y = points[k][1];
+    int found = -1;
+    double w[3] = {0, 0, 0};
+    for (int t = 0; t < triangles_ && found < 0; ++t) {  // barycentric weights (counter-clockwise triangles)
+      const int n = 3 * t;
+      const double det = (px[n + 1] - px[n]) * (py[n + 2] - py[n]) - (px[n + 2] - px[n]) * (py[n + 1] - py[n]);
+      const double w1 = ((x - px[n]) * (py[n + 2] - py[n]) - (px[n + 2] - px[n]) * (y - py[n])) / det;
+      const double w2 = ((px[n + 1] - px[n]) * (y - py[n]) - (x - px[n]) * (py[n + 1] - py[n])) / det;
+      const double tol = -1e-12;
+      if (w1 >= tol && w2 >= tol && 1 - w1 - w2 >= tol) found = t, w[0] = 1 - w1 - w2, w[1] = w1, w[2] = w2;
+    }
+    if (found < 0) {
+      std::ostringstream os;
+      os << "rock probe " << k << " at (" << x << ", " << y << ") m lies in no triangle of the rock mesh";
+      throw InputError(os.str());
+    }
+    stations.push_back(ProbeStation{found, {w[0], w[1], w[2]}});
+  }
+  probes_ = static_cast<int>(stations.size());
+  copy_from_host(a_->probe_station, stations);
+  a_->probe_peak.assign(probes_, ProbePeak{0, 0, 0, 0});
+}
+
+std::vector<ProbeSample> RockSolver::probe_samples() const {
+  const std::vector<ProbeStation> stations = to_host(a_->probe_station);
+  const std::vector<ProbePeak> peaks = to_host(a_->probe_peak);
+  std::vector<double> vx(3 * stations.size()), vy(3 * stations.size());
+  for (size_t k = 0; k < stations.size(); ++k)  // the three node velocities of each probe's triangle
+    for (int q = 0; q < 3; ++q) {
+      const size_t n = 3 * static_cast<size_t>(stations[k].triangle) + q;
+      vx[3 * k + q] = a_->nodes.vx[n], vy[3 * k + q] = a_->nodes.vy[n];
+    }
+  std::vector<ProbeSample> out(stations.size());
+  for (size_t k = 0; k < stations.size(); ++k) {
+    ProbeStation local = stations[k];
+    local.triangle = static_cast<int>(k);  // indexes the gathered copies
+    probe_velocity(local, vx.data(), vy.data(), out[k].vx, out[k].vy);
+    out[k].peak_speed = peaks[k].speed, out[k].peak_time = peaks[k].time;
+    out[k].peak_vx = peaks[k].vx, out[k].peak_vy = peaks[k].vy;
+  }
+  return out;
+}
+
 RockView RockSolver::view() {
   detail::RockArrays& a = *a_;
   return {device_ptr(a.nodes.x),      device_ptr(a.nodes.y),        device_ptr(a.nodes.vx), device_ptr(a.nodes.vy),
@@ -478,6 +550,7 @@ void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.scalars", std::array<double, 9>{time_, pressure_scale_, dt_prev_, cell_size_, grid_x0_, grid_y0_, buffer_,
                                                 travel_since_build_, stable_dt_});
   w.value("rock.integers", std::array<long, 4>{steps_, rebuilds_, grid_nx_, grid_ny_});
+  w.array("rock.probes.peak", a_->probe_peak);
 }
 
 namespace {
@@ -506,9 +579,17 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   time_ = d[0], pressure_scale_ = d[1], dt_prev_ = d[2], cell_size_ = d[3], grid_x0_ = d[4], grid_y0_ = d[5];
   buffer_ = d[6], travel_since_build_ = d[7];
   const std::array<long, 4> n = r.value<std::array<long, 4>>("rock.integers");
-  if (n[0] < 0 || n[1] < 0 || n[2] < 1 || n[3] < 1 || n[2] > (1L << 20) || n[3] > (1L << 20))
+  const long min_cells = options_.contact ? 1 : 0;  // without contact no grid is ever built
+  if (n[0] < 0 || n[1] < 0 || n[2] < min_cells || n[3] < min_cells || n[2] > (1L << 20) || n[3] > (1L << 20))
     r.fail("rock.integers", "step count or contact grid size out of range");
   steps_ = n[0], rebuilds_ = n[1], grid_nx_ = static_cast<int>(n[2]), grid_ny_ = static_cast<int>(n[3]);
+  r.array("rock.probes.peak", a_->probe_peak);  // set_probes() came first, as when it was written
+  if (a_->probe_peak.size() != static_cast<size_t>(probes_))
+    r.fail("rock.probes.peak", "holds " + std::to_string(a_->probe_peak.size()) + " probes, this case has " +
+                                   std::to_string(probes_));
+  for (const ProbePeak& p : to_host(a_->probe_peak))
+    if (!(std::isfinite(p.speed) && p.speed >= 0 && std::isfinite(p.time) && std::isfinite(p.vx) && std::isfinite(p.vy)))
+      r.fail("rock.probes.peak", "a peak is not finite or negative");
   // Every index and flag against what it addresses, before any kernel reads it.
   const detail::RockArrays& a = *a_;
   const double T = triangles_;

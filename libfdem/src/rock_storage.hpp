@@ -4,6 +4,7 @@
 #pragma once
 
 #include "blastsim/core/backend.hpp"
+#include "blastsim/fdem/fragment_kernels.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
 
 #include <string>
@@ -63,6 +64,11 @@ struct RockArrays {
   // contact broad phase (checkpointed) and its pairs (derived)
   ContactGridArrays grid;
   ContactPairsArrays pairs;
+  // velocity probes (set_probes): their stations (fixed) and peaks (checkpointed as rock.probes.peak)
+  DeviceVector<ProbeStation> probe_station;
+  DeviceVector<ProbePeak> probe_peak;
+  // work arrays of fragment_labels() (two label buffers), sized on first use
+  DeviceVector<int> label_a, label_b;
 
   //! Calls fn(record name, array, fixed size) for every array a checkpoint holds: the loads and the state,
   //! not the params (the restarted solver builds them from the same mesh and material) nor the derived contact

@@ -107,6 +107,21 @@ class RockSolver {
   int joint_count() const { return joints_; }
   const std::vector<BoundaryEdge>& boundary_edges() const { return boundary_edges_; }
   const RockMaterial& material() const { return material_; }
+  // --- analysis on the device (rock_analysis.hpp and fragments.hpp use the results) ---
+  //! Fragment label of every triangle: triangles joined through joints that have not broken share a label,
+  //! the smallest triangle index of their fragment (label propagation with pointer jumping on the device;
+  //! the same labels on every backend and thread count). Costs a few sweeps over the triangles and a sync
+  //! per sweep.
+  std::vector<int> fragment_labels() const;
+  //! Sets velocity probes at points [m] of the initial mesh (replacing any earlier set; their peaks start at
+  //! zero). Each follows the material point (the triangle holding it, by barycentric weights); every step()
+  //! then updates its peak particle velocity on the device. Throws InputError naming a point that lies in no
+  //! triangle.
+  void set_probes(const std::vector<std::array<double, 2>>& points);
+  //! Per probe: its current velocity and the peak so far (host copy).
+  std::vector<ProbeSample> probe_samples() const;
+  int probe_count() const { return probes_; }
+
   //! Number of contact-grid rebuilds so far (broad phase).
   long contact_rebuilds() const { return rebuilds_; }
   //! Rebuilds the contact broad phase (uniform grid, triangles sorted by cell). step() calls it whenever the
@@ -128,6 +143,7 @@ class RockSolver {
   double cell_size_ = 0, grid_x0_ = 0, grid_y0_ = 0;
   int grid_nx_ = 0, grid_ny_ = 0;
   int pairs_ = 0;
+  int probes_ = 0;
   double buffer_ = 0, travel_since_build_ = 0;
 };
 

@@ -42,6 +42,14 @@ struct RockEnergies {
   double crack_length = 0;         //!< total length of broken joints [m]
 };
 
+//! A velocity probe's reading (RockSolver::probe_samples()).
+struct ProbeSample {
+  double vx = 0, vy = 0;      //!< current velocity [m/s]
+  double peak_speed = 0;      //!< peak particle velocity so far: the largest |v| (peak vector sum) [m/s]
+  double peak_time = 0;       //!< [s] when it occurred
+  double peak_vx = 0, peak_vy = 0;  //!< the velocity then [m/s]
+};
+
 //! Host copy of the rock for output.
 struct RockSnapshot {
   std::vector<double> x, y, vx, vy;     //!< per node [m], [m/s]
