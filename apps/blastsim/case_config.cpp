@@ -90,7 +90,7 @@ cip::BoundaryKind read_boundary(TableReader& t, const char* side) {
 
 }  // namespace
 
-void read_gas_sections(TableReader& root, CaseConfig& c) {
+void read_gas_sections(TableReader& root, CaseConfig& c, RockCaseConfig* rock) {
   TableReader domain = root.table("domain", true);
   const long long nx = domain.integer("nx", "cells", 3, {}, 1000000), ny = domain.integer("ny", "cells", 3, {}, 1000000);
   // The gas arrays hold about 45 doubles a cell (state and derivatives twice, work arrays, coupling).
@@ -174,6 +174,7 @@ void read_gas_sections(TableReader& root, CaseConfig& c) {
     p.finish();
     c.point_probes.push_back(q);
   }
+  if (rock) read_rock_probes(probe, *rock);
   probe.finish();
   std::vector<std::string> lines, points;
   for (const LineProbe& l : c.line_probes) check_output_name("probe.line", l.name), lines.push_back(l.name);

@@ -70,8 +70,11 @@ RockCaseConfig read_rock_case(const toml::table& input);
 CoupledCaseConfig read_coupled_case(const toml::table& input);
 
 //! The sections of one solver, read through a caller's root table (so a coupled case can read both).
-void read_gas_sections(TableReader& root, CaseConfig& c);   //!< [domain], [gas], [probe]
-void read_rock_section(TableReader& root, RockCaseConfig& c);  //!< [rock]
+//! [domain], [gas], [probe]; with `rock` (a coupled case) also the rock's probes ([[probe.rock_point]]).
+void read_gas_sections(TableReader& root, CaseConfig& c, RockCaseConfig* rock = nullptr);
+void read_rock_section(TableReader& root, RockCaseConfig& c);  //!< [rock], then [analysis]
+void read_analysis_section(TableReader& root, RockCaseConfig& c);  //!< [analysis] (after [rock]: its mesh sets defaults)
+void read_rock_probes(TableReader& probe, RockCaseConfig& c);      //!< [[probe.rock_point]] of the table [probe]
 
 //! Throws InputError unless `name` (used in file names) is letters, digits, '_' and '-'.
 void check_output_name(const std::string& kind, const std::string& name);

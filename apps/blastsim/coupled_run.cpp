@@ -99,12 +99,20 @@ class BlastholeFiles {
                            s.outer_pressure_max, s.outer_speed_max, s.outer_flux_speed));
   }
 
-  //! summary.txt: the events, how each is measured, and where the paper puts them.
-  void write_summary(const fdem::RockEnergies& e) const {
-    if (!monitor_) return;
+  //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
+  //! analysis, RockOutputs::summary()). Without a blasthole monitor, the analysis alone.
+  void write_summary(const fdem::RockEnergies& e, const std::string& analysis) const {
+    const std::string path = (std::filesystem::path(c_.gas.output_directory) / "summary.txt").string();
+    if (!monitor_) {
+      if (!analysis.empty())
+        write_atomically(path, [&](std::ostream& out) {
+          out << fmt::format("blastsim summary at t = {:.4e} s (step {})\n", gas_.time(), gas_.steps()) << analysis;
+        });
+      return;
+    }
     const ibm::BlastholeEvents& ev = monitor_->events();
     auto when = [](double t) { return t < 0 ? std::string("not reached") : fmt::format("{:.4e} s ({:.3f} ms)", t, 1e3 * t); };
-    write_atomically((std::filesystem::path(c_.gas.output_directory) / "summary.txt").string(), [&](std::ostream& out) {
+    write_atomically(path, [&](std::ostream& out) {
       out << fmt::format("blastsim single-hole summary at t = {:.4e} s (step {})\n\n", gas_.time(), gas_.steps());
       out << fmt::format("first crack: {}\n  the first sample (every {:g} s) with a broken joint\n", when(ev.first_crack),
                          c_.blasthole->interval);
@@ -121,6 +129,7 @@ class BlastholeFiles {
                          "outflow sample\n", ev.ejection < 0 ? std::string("-") : fmt::format("{:.1f} m/s", ev.ejection_speed));
       out << fmt::format("broken joints: {}; crack length {:.4f} m; fracture energy {:.4e} J/m\n", e.broken_joints,
                          e.crack_length, e.fracture_dissipated);
+      out << analysis;
     });
   }
 
@@ -278,13 +287,13 @@ class CoupledRunOutputs : public RunOutputs {
     const bool row = gas_.steps() % c_.gas.monitor_interval == 0;
     if (row) write_rows();
     blasthole_.sample();
-    if (snapshot) blasthole_.write_summary(rock_.energies());
+    if (snapshot) blasthole_.write_summary(rock_.energies(), rock_out_.summary());
     if (snapshot && c_.checkpoint) write_checkpoint();
     if (!last) return;
     gas_out_.write_end(dt, snapshot);
     if (!snapshot) rock_out_.snapshot();
     if (!row) write_rows();
-    if (!snapshot) blasthole_.write_summary(rock_.energies());
+    if (!snapshot) blasthole_.write_summary(rock_.energies(), rock_out_.summary());
   }
   //! One row of rock_series.csv and coupling_series.csv, and the budget warning.
   void write_rows() {
@@ -301,9 +310,10 @@ class CoupledRunOutputs : public RunOutputs {
   void finish() override {
     const fdem::RockEnergies e = rock_.energies();
     const ibm::CouplingDiagnostics d = coupler_.diagnostics();
-    blasthole_.write_summary(e);
+    blasthole_.write_summary(e, rock_out_.summary());
     log_ << fmt::format("coupled: {} steps to t = {:.4e} s; {} joints broken, crack length {:.4f} m; gas work on the rock "
                         "{:.4e} J/m\n", gas_.steps(), gas_.time(), e.broken_joints, e.crack_length, d.gas_work_on_rock);
+    log_ << rock_out_.cost_note();
   }
 
  private:

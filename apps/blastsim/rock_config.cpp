@@ -40,6 +40,8 @@ fdem::RockMaterial read_material(TableReader& r) {
 RockMeshSpec read_mesh(TableReader& t) {
   RockMeshSpec s;
   s.shape = t.text("shape", {"rectangle", "disc", "disc_with_hole", "rectangle_with_hole", "file"});
+  s.jitter = t.number("jitter", "", Range{0.0, 0.25, false, false}, 0.0);
+  s.seed = t.integer("seed", "", 0, 1);
   if (s.shape == "file") {
     s.file = t.text("file", {});
     return s;
@@ -134,6 +136,43 @@ void read_rock_section(TableReader& root, RockCaseConfig& c) {
   rock.finish();
   c.material.validate();
   c.options.validate();
+  read_analysis_section(root, c);
+}
+
+void read_analysis_section(TableReader& root, RockCaseConfig& c) {
+  TableReader a = root.table("analysis");
+  AnalysisSpec& s = c.analysis;
+  s.fragments = a.boolean("fragments", true);
+  s.min_fragment_triangles =
+      static_cast<int>(a.integer("min_fragment_triangles", "", 1, fdem::kDefaultMinFragmentTriangles, 1000000));
+  s.oversize = a.number("oversize", "m", Range::positive(), 0.5);
+  s.ring_width = a.number("damage_ring_width", "m", Range::non_negative(), 0.0);
+  s.crushed_fraction = a.number("crushed_fraction", "", Range{0.0, 1.0, true, false}, 0.5);
+  for (TableReader& h : a.table_array("hole")) {
+    DamageHole d;
+    d.center = h.pair("center", "m");
+    d.radius = h.number("radius", "m", Range::positive());
+    h.finish();
+    s.holes.push_back(d);
+  }
+  a.finish();
+  const RockMeshSpec& m = c.mesh;
+  if (s.holes.empty() && (m.shape == "disc_with_hole" || m.shape == "rectangle_with_hole"))
+    s.holes.push_back({m.center, m.hole_radius});
+}
+
+void read_rock_probes(TableReader& probe, RockCaseConfig& c) {
+  std::vector<std::string> names;
+  for (TableReader& p : probe.table_array("rock_point")) {
+    RockProbe q;
+    q.name = p.text("name", {});
+    q.position = p.pair("position", "m");
+    p.finish();
+    check_output_name("probe.rock_point", q.name);
+    names.push_back(q.name);
+    c.probes.push_back(q);
+  }
+  check_unique_names("probe.rock_point", names);
 }
 
 RockCaseConfig read_rock_case(const toml::table& input) {
@@ -151,6 +190,9 @@ RockCaseConfig read_rock_case(const toml::table& input) {
   assign_output_basics(read_output_basics(out, 10), c);
   out.finish();
   check_interval("output.interval", c.output_interval, c.end_time, true);
+  TableReader probe = root.table("probe");
+  read_rock_probes(probe, c);
+  probe.finish();
   root.finish();
   return c;
 }
@@ -158,7 +200,7 @@ RockCaseConfig read_rock_case(const toml::table& input) {
 CoupledCaseConfig read_coupled_case(const toml::table& input) {
   CoupledCaseConfig c;
   TableReader root(input, "", c.echo);
-  read_gas_sections(root, c.gas);
+  read_gas_sections(root, c.gas, &c.rock);
   read_rock_section(root, c.rock);
   if (!c.rock.pressures.empty())
     throw InputError("rock.pressure: a coupled case loads the rock with the gas only; remove the [[rock.pressure]] "

@@ -2,6 +2,7 @@
 //! \brief The driver's rock-only case (mesh, material, loads, time, output); plain data (case_input.hpp reads it).
 #pragma once
 
+#include "blastsim/fdem/fragments.hpp"
 #include "blastsim/fdem/gmsh_mesh.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/rock_types.hpp"
@@ -23,6 +24,30 @@ struct RockMeshSpec {
   std::string file;                  //!< .msh path (shape = file)
   std::string mesher = "gmsh";       //!< gmsh | rings (disc_with_hole without Gmsh: fdem::ring_disc_with_hole)
   std::vector<fdem::Segment> joint_lines;  //!< [m] segments the Gmsh mesh follows: a row of joints along each
+  double jitter = 0;                 //!< interior vertices moved by up to this fraction of their shortest edge
+  long long seed = 1;                //!< of the jitter (one realisation per seed)
+};
+
+//! A velocity probe in the rock ([[probe.rock_point]]): follows the material point at `position`.
+struct RockProbe {
+  std::string name;
+  std::array<double, 2> position{};  //!< [m] in the initial mesh
+};
+
+//! A hole around which the damage zone is measured ([[analysis.hole]]).
+struct DamageHole {
+  std::array<double, 2> center{};  //!< [m]
+  double radius = 0;               //!< [m]
+};
+
+//! What the run reports about fragments and damage at every snapshot ([analysis]).
+struct AnalysisSpec {
+  bool fragments = true;
+  int min_fragment_triangles = fdem::kDefaultMinFragmentTriangles;
+  double oversize = 0.5;          //!< [m] sieve size above which a fragment is oversize
+  double ring_width = 0;          //!< [m] of the damage-zone rings (0: twice the mean joint length)
+  double crushed_fraction = 0.5;  //!< broken share of a ring's joint length that makes it crushed
+  std::vector<DamageHole> holes;  //!< (default: the mesh's hole, when it has one)
 };
 
 //! Prescribed velocity of every node whose initial position lies in the box [min, max].
@@ -56,6 +81,8 @@ struct RockCaseConfig {
   bool vtk = true;
   double progress_interval = 2.0;  //!< [s wall]
   long long monitor_interval = 10;  //!< steps between rows of rock_series.csv
+  AnalysisSpec analysis;
+  std::vector<RockProbe> probes;
   std::vector<std::string> echo;
 };
 

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace blastsim::app {
@@ -38,11 +39,36 @@ std::vector<int> nodes_in_box(const fdem::FdemTopology& topo, const VelocityLoad
   return nodes;
 }
 
+//! The vertices that lie on a joint line (kept in place by the mesh jitter: the lines stay straight).
+std::vector<int> joint_line_vertices(const fdem::TriangleMesh& mesh, const std::vector<fdem::Segment>& lines, double h) {
+  std::vector<int> out;
+  for (size_t v = 0; v < mesh.vertices.size(); ++v)
+    for (const fdem::Segment& g : lines) {
+      const double lx = g.b[0] - g.a[0], ly = g.b[1] - g.a[1], len2 = lx * lx + ly * ly;
+      const double px = mesh.vertices[v][0] - g.a[0], py = mesh.vertices[v][1] - g.a[1];
+      const double t = std::clamp((px * lx + py * ly) / len2, 0.0, 1.0);
+      if (std::hypot(px - t * lx, py - t * ly) < 1e-6 * h) {
+        out.push_back(static_cast<int>(v));
+        break;
+      }
+    }
+  return out;
+}
+
 }  // namespace
 
 RockModel make_rock_model(const RockCaseConfig& c) {
   RockModel m;
   m.mesh = make_mesh(c.mesh);
+  if (c.mesh.jitter > 0) {
+    try {
+      fdem::perturb_mesh(m.mesh.mesh, c.mesh.jitter, static_cast<std::uint64_t>(c.mesh.seed),
+                         joint_line_vertices(m.mesh.mesh, c.mesh.joint_lines, c.mesh.element_size));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("rock.mesh.jitter = {}: the perturbed mesh is invalid ({}); use a smaller jitter",
+                                   c.mesh.jitter, e.what()));
+    }
+  }
   m.topology = fdem::build_topology(m.mesh.mesh);
   m.solver = std::make_unique<fdem::RockSolver>(m.topology, c.material, c.options);
   fdem::RockSolver& solver = *m.solver;
@@ -74,6 +100,22 @@ RockModel make_rock_model(const RockCaseConfig& c) {
     }
     solver.set_edge_pressure(fdem::boundary_slots(topo, group->second, l.boundary), l.pressure);
   }
+  std::vector<std::array<double, 2>> probe_points;
+  for (const RockProbe& p : c.probes) probe_points.push_back(p.position);
+  try {
+    solver.set_probes(probe_points);
+  } catch (const InputError&) {
+    for (size_t k = 0; k < c.probes.size(); ++k) {  // name the first probe outside the rock
+      try {
+        solver.set_probes({c.probes[k].position});
+      } catch (const InputError&) {
+        throw InputError(fmt::format("probe.rock_point.{}.position = [{}, {}] m (\"{}\"): lies in no triangle of the "
+                                     "rock mesh; a rock probe must lie in the rock", k, c.probes[k].position[0],
+                                     c.probes[k].position[1], c.probes[k].name));
+      }
+    }
+    throw;
+  }
   return m;
 }
 
@@ -103,12 +145,36 @@ RockOutputs::RockOutputs(const RockCaseConfig& c, const RockModel& model, bool r
                 return h;
               }(),
               resume),
-      e0_(solver_.energies()) {}
+      e0_(solver_.energies()) {
+  if (c.analysis.fragments) {
+    std::string h = "step,time_s,fragments,sized,fines_mass_fraction,largest_mass_fraction,x20_m,x50_m,x80_m,"
+                    "oversize_fraction,swebrec_x50_m,swebrec_xmax_m,swebrec_b,swebrec_r2,rosin_rammler_x50_m,"
+                    "rosin_rammler_n,rosin_rammler_r2";
+    for (size_t k = 0; k < c.analysis.holes.size(); ++k) h += fmt::format(",hole{0}_crushed_radius_m,hole{0}_cracked_radius_m", k);
+    fragmentation_.emplace((dir_ / "fragmentation_series.csv").string(), h, resume);
+  }
+  if (!c.probes.empty()) {
+    std::string h = "step,time_s";
+    for (const RockProbe& p : c.probes) h += fmt::format(",{0}_vx_m_per_s,{0}_vy_m_per_s,{0}_speed_m_per_s", p.name);
+    probes_.emplace((dir_ / "rock_probes.csv").string(), h, resume);
+  }
+  // Damage rings: twice the mean joint length unless given (a ring then holds joints of every orientation).
+  ring_width_ = c.analysis.ring_width;
+  if (ring_width_ == 0) {
+    double sum = 0;
+    for (const fdem::Joint& j : model.topology.joints)
+      sum += std::hypot(model.topology.node_positions[j.a1][0] - model.topology.node_positions[j.a0][0],
+                        model.topology.node_positions[j.a1][1] - model.topology.node_positions[j.a0][1]);
+    ring_width_ = model.topology.joints.empty() ? 1.0 : 2 * sum / model.topology.joints.size();
+  }
+}
 
 void RockOutputs::write_checkpoint(CheckpointWriter& w) {
   w.value("out.rock.index", index_);
   w.value("out.rock.initial", e0_);
   w.value("out.rock.csv_size", series_.size());
+  w.value("out.rock.fragmentation_size", fragmentation_ ? fragmentation_->size() : std::uint64_t{0});
+  w.value("out.rock.probes_size", probes_ ? probes_->size() : std::uint64_t{0});
   write_pvd_checkpoint(w, "out.rock.pvd", rock_pvd_);
   write_pvd_checkpoint(w, "out.joints.pvd", joints_pvd_);
 }
@@ -118,19 +184,140 @@ void RockOutputs::read_checkpoint(CheckpointReader& r) {
   if (index_ < 0) r.fail("out.rock.index", "negative");
   e0_ = r.value<fdem::RockEnergies>("out.rock.initial");
   series_.truncate_to(r.value<std::uint64_t>("out.rock.csv_size"));
+  const std::uint64_t fragmentation = r.value<std::uint64_t>("out.rock.fragmentation_size");
+  const std::uint64_t probes = r.value<std::uint64_t>("out.rock.probes_size");
+  if (fragmentation_) fragmentation_->truncate_to(fragmentation);
+  if (probes_) probes_->truncate_to(probes);
   read_pvd_checkpoint(r, "out.rock.pvd", rock_pvd_);
   read_pvd_checkpoint(r, "out.joints.pvd", joints_pvd_);
 }
 
 void RockOutputs::snapshot() {
-  if (!c_.vtk) return;
+  if (!c_.vtk && !c_.analysis.fragments && c_.probes.empty()) return;
   const fdem::RockSnapshot s = solver_.snapshot();
-  const std::string rock_name = fmt::format("rock_{:06d}.vtu", index_);
-  const std::string joints_name = fmt::format("joints_{:06d}.vtu", index_++);
-  write_rock_vtu((dir_ / rock_name).string(), s);
+  RockCellFields cells;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (c_.analysis.fragments) cells.fragment_id = solver_.fragment_labels();
+  cells.damage = fdem::triangle_damage(s);
+  analyse(s, cells.fragment_id);
+  analysis_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++analyses_;
+  const int index = index_++;
+  if (!c_.vtk) return;
+  const std::string rock_name = fmt::format("rock_{:06d}.vtu", index);
+  const std::string joints_name = fmt::format("joints_{:06d}.vtu", index);
+  write_rock_vtu((dir_ / rock_name).string(), s, cells);
   write_joints_vtu((dir_ / joints_name).string(), s);
   rock_pvd_.add(solver_.time(), rock_name);
   joints_pvd_.add(solver_.time(), joints_name);
+}
+
+void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& labels) {
+  const AnalysisSpec& a = c_.analysis;
+  analysed_at_ = solver_.time();
+  zones_.clear();
+  for (const DamageHole& h : a.holes)
+    zones_.push_back(fdem::damage_zone(s, h.center, h.radius, ring_width_, a.crushed_fraction));
+  if (probes_) {  // ppv.csv: the peak so far at each probe, with its distance from the first hole
+    const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
+    write_atomically((dir_ / "ppv.csv").string(), [&](std::ostream& out) {
+      out << "name,x_m,y_m,distance_from_hole0_m,ppv_m_per_s,peak_time_s,peak_vx_m_per_s,peak_vy_m_per_s\n";
+      for (size_t k = 0; k < p.size(); ++k) {
+        const auto& q = c_.probes[k].position;
+        const double d = a.holes.empty() ? std::nan("")
+                                         : std::hypot(q[0] - a.holes[0].center[0], q[1] - a.holes[0].center[1]);
+        out << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", c_.probes[k].name, q[0], q[1], d,
+                           p[k].peak_speed, p[k].peak_time, p[k].peak_vx, p[k].peak_vy);
+      }
+    });
+  }
+  if (!a.fragments) return;
+  const std::vector<fdem::Fragment> f = fdem::measure_fragments(s, labels, c_.material.density, a.min_fragment_triangles);
+  sizes_ = fdem::size_distribution(f, a.oversize);
+  double largest = 0;
+  for (const fdem::Fragment& g : f) largest = std::max(largest, g.mass);
+  largest_fraction_ = sizes_.total_mass > 0 ? largest / sizes_.total_mass : 0;
+  write_atomically((dir_ / fmt::format("fragments_{:06d}.csv", index_)).string(), [&](std::ostream& out) {
+    out << "label,triangles,fines,area_m2,mass_kg_per_m,equivalent_diameter_m,sieve_size_m,centroid_x_m,centroid_y_m,"
+           "velocity_x_m_per_s,velocity_y_m_per_s\n";
+    for (const fdem::Fragment& g : f)
+      out << fmt::format("{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", g.label, g.triangles,
+                         g.fines ? 1 : 0, g.area, g.mass, g.equivalent_diameter, g.sieve_size, g.centroid[0],
+                         g.centroid[1], g.velocity[0], g.velocity[1]);
+  });
+  const fdem::SizeDistribution& d = sizes_;
+  write_atomically((dir_ / "size_distribution.csv").string(), [&](std::ostream& out) {
+    out << "sieve_size_m,passing,swebrec_fit,rosin_rammler_fit\n";
+    for (size_t i = 0; i < d.size.size(); ++i) {
+      const double sw = d.swebrec.valid ? fdem::swebrec_passing(d.size[i], d.swebrec.x50, d.swebrec.xmax, d.swebrec.b) : std::nan("");
+      const double rr = d.rosin_rammler.valid ? fdem::rosin_rammler_passing(d.size[i], d.rosin_rammler.x50, d.rosin_rammler.n) : std::nan("");
+      out << fmt::format("{:.9e},{:.9e},{:.9e},{:.9e}\n", d.size[i], d.passing[i], sw, rr);
+    }
+  });
+  std::string row = fmt::format("{},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},"
+                                "{:.6e},{:.6e}",
+                                solver_.steps(), solver_.time(), d.fragments, d.sized,
+                                d.total_mass > 0 ? d.fines_mass / d.total_mass : 0.0, largest_fraction_, d.x20, d.x50, d.x80,
+                                d.oversize_fraction, d.swebrec.x50, d.swebrec.xmax, d.swebrec.b, d.swebrec.r_squared,
+                                d.rosin_rammler.x50, d.rosin_rammler.n, d.rosin_rammler.r_squared);
+  for (const fdem::DamageZone& z : zones_) row += fmt::format(",{:.6e},{:.6e}", z.crushed_radius, z.cracked_radius);
+  fragmentation_->row(row);
+}
+
+std::string RockOutputs::summary() const {
+  if (analysed_at_ < 0) return {};
+  const AnalysisSpec& a = c_.analysis;
+  std::string out = fmt::format("\nanalysis of the rock at t = {:.4e} s (docs/analysis.md defines each figure)\n", analysed_at_);
+  if (a.fragments) {
+    const fdem::SizeDistribution& d = sizes_;
+    auto size = [](double x) { return x > 0 ? fmt::format("{:.4f} m", x) : std::string("in the fines"); };
+    out += fmt::format("fragments: {} pieces, {} sized (at least {} triangles), fines {:.2f} % of the mass; the largest "
+                       "piece holds {:.2f} % of the mass\n", d.fragments, d.sized, a.min_fragment_triangles,
+                       d.total_mass > 0 ? 100 * d.fines_mass / d.total_mass : 0.0, 100 * largest_fraction_);
+    out += fmt::format("  X20 {}, X50 {}, X80 {} (sieve size: minimum Feret width); oversize (> {:g} m) {:.2f} % of the mass\n",
+                       size(d.x20), size(d.x50), size(d.x80), a.oversize, 100 * d.oversize_fraction);
+    out += d.swebrec.valid ? fmt::format("  Swebrec fit: x50 {:.4f} m, xmax {:.4f} m, b {:.3f}; R^2 {:.4f}\n", d.swebrec.x50,
+                                         d.swebrec.xmax, d.swebrec.b, d.swebrec.r_squared)
+                           : std::string("  Swebrec fit: too few sized fragments (needs 4 points with 0 < P < 1)\n");
+    out += d.rosin_rammler.valid
+               ? fmt::format("  Rosin-Rammler fit: x50 {:.4f} m, n {:.3f}; R^2 {:.4f}\n", d.rosin_rammler.x50,
+                             d.rosin_rammler.n, d.rosin_rammler.r_squared)
+               : std::string("  Rosin-Rammler fit: too few sized fragments (needs 3 points with 0 < P < 1)\n");
+  }
+  for (size_t k = 0; k < zones_.size(); ++k) {
+    const fdem::DamageZone& z = zones_[k];
+    out += fmt::format("damage zone around hole {} at ({:g}, {:g}) m, radius {:g} m (rings of {:.4f} m): crushed to {:.4f} m "
+                       "({:.1f} hole radii), cracked to {:.4f} m ({:.1f} hole radii)\n",
+                       k, z.center[0], z.center[1], z.hole_radius, ring_width_, z.crushed_radius,
+                       z.crushed_radius / z.hole_radius, z.cracked_radius, z.cracked_radius / z.hole_radius);
+  }
+  if (!c_.probes.empty()) {
+    out += "peak particle velocity (largest |v| at each rock probe, updated every step):\n";
+    const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
+    for (size_t k = 0; k < p.size(); ++k) {
+      const auto& q = c_.probes[k].position;
+      const std::string dist = a.holes.empty() ? std::string()
+                                               : fmt::format(", {:.4f} m from hole 0",
+                                                             std::hypot(q[0] - a.holes[0].center[0], q[1] - a.holes[0].center[1]));
+      out += fmt::format("  {} at ({:g}, {:g}) m{}: PPV {:.4g} m/s at {:.4f} ms\n", c_.probes[k].name, q[0], q[1], dist,
+                         p[k].peak_speed, 1e3 * p[k].peak_time);
+    }
+  }
+  return out;
+}
+
+std::string RockOutputs::cost_note() const {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  return fmt::format("rock analysis: {:.3f} s over {} snapshots ({:.2f} % of the {:.1f} s wall time since the outputs "
+                     "opened)\n", analysis_seconds_, analyses_, wall > 0 ? 100 * analysis_seconds_ / wall : 0.0, wall);
+}
+
+void RockOutputs::write_summary() const {
+  const std::string text = summary();
+  if (text.empty()) return;
+  write_atomically((dir_ / "summary.txt").string(), [&](std::ostream& out) {
+    out << fmt::format("blastsim rock summary at t = {:.4e} s (step {})\n", solver_.time(), solver_.steps()) << text;
+  });
 }
 
 fdem::RockEnergies RockOutputs::monitor() {
@@ -139,6 +326,12 @@ fdem::RockEnergies RockOutputs::monitor() {
   std::string reactions;  // of the supports on the loaded nodes: the platen force, with the sign of the axes
   for (const std::array<double, 2>& f : solver_.support_reactions(velocity_nodes_))
     reactions += fmt::format(",{:.9e},{:.9e}", f[0], f[1]);
+  if (probes_) {
+    std::string row = fmt::format("{},{:.9e}", solver_.steps(), solver_.time());
+    for (const fdem::ProbeSample& p : solver_.probe_samples())
+      row += fmt::format(",{:.6e},{:.6e},{:.6e}", p.vx, p.vy, std::hypot(p.vx, p.vy));
+    probes_->row(row);
+  }
   series_.row(fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e}",
                          solver_.steps(), solver_.time(), e.kinetic, e.strain, e.joint_work, e.fracture_dissipated,
                          e.contact_work, e.friction_dissipated, e.damping_dissipated, e.external_work, balance,

@@ -64,9 +64,11 @@ class RockRunOutputs : public RunOutputs {
   void finish() override {
     const fdem::RockEnergies e = out_.monitor();
     out_.snapshot();
+    out_.write_summary();
     log_ << fmt::format("rock: {} steps to t = {:.4e} s; {} joints broken, crack length {:.4f} m, fracture energy "
                         "{:.4e} J/m\n", solver_.steps(), solver_.time(), e.broken_joints, e.crack_length,
                         e.fracture_dissipated);
+    log_ << out_.cost_note();
   }
 
  private:

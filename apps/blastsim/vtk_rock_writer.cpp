@@ -15,6 +15,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -51,7 +52,7 @@ void write_grid(const std::string& path, vtkUnstructuredGrid* grid) {
 }
 }  // namespace
 
-void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& s) {
+void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& s, const RockCellFields& cells) {
   const vtkIdType nodes = static_cast<vtkIdType>(s.x.size()), triangles = nodes / 3;
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -81,6 +82,18 @@ void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& s) {
   grid->GetCellData()->AddArray(stress);
   grid->GetCellData()->AddArray(smax);
   grid->GetCellData()->AddArray(smin);
+  vtkNew<vtkIntArray> fragment;
+  if (cells.fragment_id.size() == static_cast<size_t>(triangles)) {
+    fragment->SetName("fragment_id");
+    fragment->SetNumberOfTuples(triangles);
+    for (vtkIdType t = 0; t < triangles; ++t) fragment->SetValue(t, cells.fragment_id[t]);
+    grid->GetCellData()->AddArray(fragment);
+  }
+  auto damage = array("damage", 1, cells.damage.size() == static_cast<size_t>(triangles) ? triangles : 0);
+  if (cells.damage.size() == static_cast<size_t>(triangles)) {
+    for (vtkIdType t = 0; t < triangles; ++t) damage->SetValue(t, cells.damage[t]);
+    grid->GetCellData()->AddArray(damage);
+  }
   write_grid(path, grid);
 }
 
@@ -110,7 +123,7 @@ void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s) {
   write_grid(path, grid);
 }
 #else
-void write_rock_vtu(const std::string& path, const fdem::RockSnapshot&) {
+void write_rock_vtu(const std::string& path, const fdem::RockSnapshot&, const RockCellFields&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
 void write_joints_vtu(const std::string& path, const fdem::RockSnapshot&) {

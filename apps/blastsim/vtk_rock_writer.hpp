@@ -5,13 +5,20 @@
 #include "blastsim/fdem/rock_types.hpp"
 
 #include <string>
+#include <vector>
 
 namespace blastsim::app {
 
+//! Per-triangle results of the analysis written with the triangles (an empty array is left out).
+struct RockCellFields {
+  std::vector<int> fragment_id;  //!< fdem::RockSolver::fragment_labels()
+  std::vector<double> damage;    //!< fdem::triangle_damage()
+};
+
 //! Writes the triangles (points = FDEM nodes at their current positions; point data displacement and
-//! velocity; cell data stress [sxx, syy, sxy], principal_max, principal_min (the paper's "PS3")) to `path`,
-//! atomically. Throws std::runtime_error without VTK.
-void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& snapshot);
+//! velocity; cell data stress [sxx, syy, sxy], principal_max, principal_min (the paper's "PS3"), and the
+//! fields of `cells`) to `path`, atomically. Throws std::runtime_error without VTK.
+void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& snapshot, const RockCellFields& cells = {});
 
 //! Writes every joint as a line between the mid-points of its two faces' ends, with cell data damage and
 //! broken (1: a crack), to `path`, atomically.

@@ -156,4 +156,48 @@ NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, dou
   return out;
 }
 
+namespace {
+//! SplitMix64 (Steele, Lea & Flood 2014): a well-mixed 64-bit hash of a counter.
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+double unit_interval(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }  // [0, 1)
+}  // namespace
+
+void perturb_mesh(TriangleMesh& mesh, double fraction, std::uint64_t seed, const std::vector<int>& fixed) {
+  if (!(fraction >= 0 && fraction <= 0.25))
+    throw InputError("mesh perturbation fraction = " + std::to_string(fraction) + ": must be in [0, 0.25] of the local element size");
+  check_mesh(mesh);
+  if (fraction == 0) return;
+  const size_t nv = mesh.vertices.size();
+  std::vector<char> keep(nv, 0);
+  std::vector<double> shortest(nv, 1e308);
+  std::map<std::pair<int, int>, int> edge_count;  // an edge of one triangle only is on the boundary
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      ++edge_count[{std::min(a, b), std::max(a, b)}];
+      const double len = std::hypot(mesh.vertices[b][0] - mesh.vertices[a][0], mesh.vertices[b][1] - mesh.vertices[a][1]);
+      shortest[a] = std::min(shortest[a], len), shortest[b] = std::min(shortest[b], len);
+    }
+  for (const auto& [edge, count] : edge_count)
+    if (count == 1) keep[edge.first] = keep[edge.second] = 1;
+  for (int v : fixed) {
+    if (v < 0 || static_cast<size_t>(v) >= nv) throw InputError("perturb_mesh: fixed vertex " + std::to_string(v) + " does not exist");
+    keep[v] = 1;
+  }
+  for (size_t v = 0; v < nv; ++v) {
+    if (keep[v] || shortest[v] >= 1e308) continue;
+    const std::uint64_t h = splitmix64(seed ^ splitmix64(v));
+    const double radius = fraction * shortest[v] * std::sqrt(unit_interval(h));
+    const double angle = 2 * M_PI * unit_interval(splitmix64(h));
+    mesh.vertices[v][0] += radius * std::cos(angle);
+    mesh.vertices[v][1] += radius * std::sin(angle);
+  }
+  check_mesh(mesh);
+}
+
 }  // namespace blastsim::fdem

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -26,7 +27,11 @@ std::vector<std::string> small_case(const fs::path& out) {
           "domain.y_max=0.18", "gas.region.0.radius=0.03", "rock.mesh.radius=0.15", "rock.mesh.hole_radius=0.02",
           "monitor.blasthole.outer_radius=0.15", "monitor.blasthole.hole_radius=0.02",
           "rock.mesh.element_size=0.01", "monitor.region.0.radius=0.15", "time.end=3e-5", "output.interval=1.5e-5",
-          "output.monitor_interval=5", "output.directory=\"" + out.string() + "\""};
+          "output.monitor_interval=5", "output.directory=\"" + out.string() + "\"",
+          // the example's rock probes, moved into this smaller disc (r = 0.03 to 0.13 m along 30 degrees)
+          "probe.rock_point.0.position=[0.026, 0.015]", "probe.rock_point.1.position=[0.0433, 0.025]",
+          "probe.rock_point.2.position=[0.0606, 0.035]", "probe.rock_point.3.position=[0.0779, 0.045]",
+          "probe.rock_point.4.position=[0.0953, 0.055]", "probe.rock_point.5.position=[0.1126, 0.065]"};
 }
 
 //! Columns of the last row of a CSV file by header name.
@@ -69,6 +74,31 @@ TEST_CASE("Driver runs a coupled case: gas, rock and coupling files, and the ene
   // coarse grid (the hole is 3 cells across in radius).
   CHECK(std::fabs(residual) < 0.10 * work);
   CHECK(row.at("inside_rock_mass_kg_per_m") > 0);
+  // The analysis (docs/analysis.md): fragment files at every snapshot, PPV of the six probes, summary lines.
+  for (const char* f : {"fragments_000000.csv", "fragments_000003.csv", "size_distribution.csv", "fragmentation_series.csv",
+                        "rock_probes.csv", "ppv.csv"})
+    CHECK(fs::exists(out / f));
+  const std::map<std::string, double> frag = last_row(out / "fragmentation_series.csv");
+  CHECK(frag.at("fragments") >= 1);
+  CHECK(frag.at("hole0_cracked_radius_m") >= 0.02);  // at least the hole radius
+  std::ifstream ppv(out / "ppv.csv");
+  std::string line;
+  int probes = 0;
+  double first_ppv = 0;
+  std::getline(ppv, line);
+  while (std::getline(ppv, line))
+    if (!line.empty() && probes++ == 0) {  // name,x_m,y_m,distance_from_hole0_m,ppv_m_per_s,...
+      std::stringstream fields(line);
+      std::string field;
+      for (int k = 0; k < 5; ++k) std::getline(fields, field, ',');
+      first_ppv = std::stod(field);
+    }
+  CHECK(probes == 6);
+  CHECK(first_ppv > 0);  // the probe nearest the hole has moved
+  std::ifstream summary(out / "summary.txt");
+  const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  CHECK(text.find("analysis of the rock") != std::string::npos);
+  CHECK(text.find("PPV") != std::string::npos);
 }
 
 TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupled][bad]") {
@@ -86,6 +116,12 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(read({"gas.courant=2"}), Catch::Contains("gas.courant"));
   CHECK_THROWS_WITH(read({"output.times=[2e-5, 1e-5]"}), Catch::Contains("ascending"));
   CHECK_THROWS_WITH(read({"rock.mesh.mesher=\"rings\"", "rock.mesh.shape=\"disc\""}), Catch::Contains("rock.mesh.mesher"));
+  CHECK_THROWS_WITH(read({"analysis.oversize=0"}), Catch::Contains("analysis.oversize"));
+  CHECK_THROWS_WITH(read({"analysis.min_fragment_triangles=0"}), Catch::Contains("analysis.min_fragment_triangles"));
+  CHECK_THROWS_WITH(read({"rock.mesh.jitter=0.5"}), Catch::Contains("rock.mesh.jitter"));
+  CHECK_THROWS_WITH(read({"probe.rock_point.1.name=\"r010\""}), Catch::Contains("probe.rock_point.1.name"));
+  CHECK_THROWS_WITH(read({"analysis.damage_ring_width=-0.1"}), Catch::Contains("analysis.damage_ring_width"));
+  CHECK_THROWS_WITH(read({"analysis.crushed_fraction=0"}), Catch::Contains("analysis.crushed_fraction"));
   // With one dt for both solvers, a fixed dt above the rock's stable step is refused at the start, naming
   // the stable value.
   std::ostringstream log;
@@ -94,6 +130,10 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   o.push_back("time.rock_subcycling=false");
   o.push_back("time.dt=1e-5");
   CHECK_THROWS_WITH(app::run_coupled_case(read(o), log), Catch::Contains("exceeds the rock's stable step"));
+  // A rock probe outside the rock is refused when the mesh is built, naming the probe.
+  std::vector<std::string> outside = small_case(out);
+  outside.push_back("probe.rock_point.2.position=[0.5, 0.5]");
+  CHECK_THROWS_WITH(app::run_coupled_case(read(outside), log), Catch::Contains("probe.rock_point.2.position"));
 }
 
 namespace {

@@ -98,3 +98,30 @@ TEST_CASE("Ring mesh of a disc with a hole (no Gmsh): area, boundary groups, ele
   }
   CHECK_THROWS_WITH(ring_disc_with_hole(0, 0, 0.05, 0.1, 0.01), Catch::Contains("hole radius < radius"));
 }
+
+TEST_CASE("Mesh jitter: interior vertices move within the bound, boundary and fixed ones stay, same seed same mesh",
+          "[fdem][mesh][jitter]") {
+  const TriangleMesh base = structured_rectangle(10, 8, 0.0, 1.0, 0.0, 0.8);  // edges 0.1 m (diagonals longer)
+  TriangleMesh a = base, b = base, c = base;
+  const int centre = 5 * 11 + 4;  // vertex (4, 5), interior
+  perturb_mesh(a, 0.05, 7, {centre});
+  perturb_mesh(b, 0.05, 7, {centre});
+  perturb_mesh(c, 0.05, 8);
+  int moved = 0;
+  double largest = 0;
+  for (size_t v = 0; v < base.vertices.size(); ++v) {
+    const double d = std::hypot(a.vertices[v][0] - base.vertices[v][0], a.vertices[v][1] - base.vertices[v][1]);
+    const double x = base.vertices[v][0], y = base.vertices[v][1];
+    const bool boundary = x < 1e-12 || x > 1 - 1e-12 || y < 1e-12 || y > 0.8 - 1e-12;
+    if (boundary || static_cast<int>(v) == centre) CHECK(d == 0.0);
+    if (d > 0) ++moved;
+    largest = std::max(largest, d);
+  }
+  std::printf("mesh jitter 0.05: %d of %zu vertices moved, largest offset %.4f m (bound 0.05 x 0.1 m)\n", moved,
+              base.vertices.size(), largest);
+  CHECK(moved == 9 * 7 - 1);  // every interior vertex but the fixed one
+  CHECK(largest <= 0.05 * 0.1 + 1e-15);
+  CHECK(a.vertices == b.vertices);
+  CHECK(a.vertices != c.vertices);
+  CHECK_THROWS_AS(perturb_mesh(a, 0.3, 1), blastsim::InputError);
+}

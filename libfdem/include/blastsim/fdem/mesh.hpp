@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -56,6 +57,13 @@ FdemTopology build_topology(const TriangleMesh& mesh);
 //! A structured mesh of nx x ny squares over [x0, x1] x [y0, y1], each square cut into two triangles
 //! along alternating diagonals (for tests and simple specimens).
 TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y0, double y1);
+
+//! Moves every vertex that is not on the mesh boundary and not in `fixed` by a random offset, uniform over a
+//! disc of radius `fraction` x the length of its shortest edge, for realisations of one case that differ only
+//! in the mesh (docs/analysis.md, "Spread over realisations"). The offsets come from a counter-based
+//! generator (SplitMix64 of seed and vertex index), so the same seed gives the same mesh on every machine.
+//! fraction in [0, 0.25]; the perturbed mesh is checked (check_mesh()).
+void perturb_mesh(TriangleMesh& mesh, double fraction, std::uint64_t seed, const std::vector<int>& fixed = {});
 
 //! A disc of radius r centred at (cx, cy) with a concentric hole of radius r_hole, paved in rings without
 //! Gmsh (for machines that lack it): round((r - r_hole) / h) rings of equal width, each circle divided into

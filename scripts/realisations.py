@@ -1,0 +1,201 @@
+#!/usr/bin/python3
+"""Run one blastsim case N times on perturbed meshes and gather the spread of its main results.
+
+Usage: scripts/realisations.py CASE.toml N [--jitter F] [--out DIR] [--blastsim PATH] [--resume]
+                               [--collect-only] [section.key=value ...]
+
+Realisation K (K = 1..N) runs, one after another,
+    blastsim -q CASE.toml rock.mesh.jitter=F rock.mesh.seed=K output.directory=DIR/seed_K [section.key=value ...]
+with F = 0.03 unless --jitter says otherwise; DIR defaults to realisations_<case stem> in the current directory
+and blastsim to build-cpu/apps/blastsim/blastsim of this repository. The driver's own output goes to
+DIR/seed_K/blastsim.log. --resume skips a seed whose summary.txt says the run reached time.end (read from the
+overrides or the case file); --collect-only runs nothing and rebuilds the tables from the folders there.
+
+From each run it takes the crack length and broken joints (last row of rock_series.csv), fragments, X50, X80 and the
+crushed and cracked radius of hole 0 (last row of fragmentation_series.csv), and the time the gas leaves the
+rock's outer surface (summary.txt, possibly "not reached"), and writes
+  DIR/realisations.csv  one row per seed
+  DIR/realisations.md   per quantity: runs, mean, sample standard deviation (n-1), min, max and coefficient of
+                        variation (std / |mean|); printed too
+Needs only Python 3 (/usr/bin/python3).
+"""
+import argparse
+import csv
+import math
+import re
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+NOT_REACHED = "not reached"
+# (column of realisations.csv, source file, column there, label in the table)
+QUANTITIES = [
+    ("crack_length_m", "rock_series.csv", "crack_length_m", "crack length [m]"),
+    ("broken_joints", "rock_series.csv", "broken_joints", "broken joints"),
+    ("fragments", "fragmentation_series.csv", "fragments", "fragments"),
+    ("x50_m", "fragmentation_series.csv", "x50_m", "X50 [m]"),
+    ("x80_m", "fragmentation_series.csv", "x80_m", "X80 [m]"),
+    ("hole0_crushed_radius_m", "fragmentation_series.csv", "hole0_crushed_radius_m", "hole 0 crushed radius [m]"),
+    ("hole0_cracked_radius_m", "fragmentation_series.csv", "hole0_cracked_radius_m", "hole 0 cracked radius [m]"),
+]
+EJECTION = ("ejection_time_s", "gas ejection time [s]")
+
+
+def last_row(path):
+    """The last row of a CSV file as a dict, or {} if the file is missing or has no rows."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except FileNotFoundError:
+        return {}
+    return rows[-1] if rows else {}
+
+
+def end_time(case, overrides):
+    """time.end of the run: from the overrides, else from the case file; None when it cannot be read."""
+    for o in overrides:
+        if o.startswith("time.end="):
+            return float(o.split("=", 1)[1])
+    try:
+        import tomllib  # Python >= 3.11
+
+        with open(case, "rb") as f:
+            return float(tomllib.load(f)["time"]["end"])
+    except ImportError:  # older Python: the first `end = ...` after [time]
+        m = re.search(r"^\[time\][^\[]*?^\s*end\s*=\s*([-+0-9.eE]+)", Path(case).read_text(), re.M | re.S)
+        return float(m.group(1)) if m else None
+    except (OSError, KeyError, ValueError):
+        return None
+
+
+def complete(folder, end):
+    """Whether folder holds a finished run: summary.txt written at (nearly) time.end, when that is known."""
+    summary = folder / "summary.txt"
+    if not summary.exists():
+        return False
+    m = re.search(r"summary at t = (\S+) s", summary.read_text())
+    return end is None or (m is not None and float(m.group(1)) >= 0.999 * end)
+
+
+def run_all(args, out):
+    blastsim = Path(args.blastsim) if args.blastsim else REPO / "build-cpu/apps/blastsim/blastsim"
+    if not blastsim.exists():
+        sys.exit(f"realisations: no blastsim at {blastsim} (build it, or pass --blastsim)")
+    end = end_time(args.case, args.overrides)
+    failed = []
+    for k in range(1, args.n + 1):
+        folder = out / f"seed_{k}"
+        if args.resume and complete(folder, end):
+            print(f"[{k}/{args.n}] seed {k}: complete run in {folder}, skipped", flush=True)
+            continue
+        folder.mkdir(parents=True, exist_ok=True)
+        command = [str(blastsim), "-q", args.case, f"rock.mesh.jitter={args.jitter}", f"rock.mesh.seed={k}",
+                   f"output.directory={folder.resolve()}", *args.overrides]
+        print(f"[{k}/{args.n}] seed {k}: running into {folder} ...", end=" ", flush=True)
+        start = time.monotonic()
+        with open(folder / "blastsim.log", "w") as log:
+            rc = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT).returncode
+        print(f"{'done' if rc == 0 else f'FAILED (exit {rc})'} in {time.monotonic() - start:.0f} s", flush=True)
+        if rc != 0:
+            failed.append(k)
+            print(f"  see {folder / 'blastsim.log'}", flush=True)
+    return failed
+
+
+def collect(folder):
+    """The row of realisations.csv of one run folder: numbers as floats, missing values as None."""
+    row = {}
+    for key, source, column, _ in QUANTITIES:
+        value = last_row(folder / source).get(column)
+        row[key] = float(value) if value not in (None, "") else None
+    summary = folder / "summary.txt"
+    m = re.search(r"gas leaves the rock's outer surface: (not reached|\S+ s)", summary.read_text()) \
+        if summary.exists() else None
+    if m is None:
+        row[EJECTION[0]] = None
+    else:
+        row[EJECTION[0]] = NOT_REACHED if m.group(1) == NOT_REACHED else float(m.group(1).split()[0])
+    return row
+
+
+def cell(x):
+    return "" if x is None else x if isinstance(x, str) else f"{x:.10g}"
+
+
+def number(x):
+    return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.4g}"
+
+
+def statistics_line(label, values, runs):
+    """A Markdown table row of the numbers among values; notes the runs that lack the quantity."""
+    xs = [v for v in values if isinstance(v, float) and math.isfinite(v)]
+    unreached = sum(v == NOT_REACHED for v in values)
+    missing = runs - len(xs) - unreached
+    notes = ([f"{unreached} not reached"] if unreached else []) + ([f"{missing} missing"] if missing else [])
+    if not xs:
+        return f"| {label} | 0 | - | - | - | - | - | {', '.join(notes)} |"
+    mean = statistics.fmean(xs)
+    std = statistics.stdev(xs) if len(xs) > 1 else float("nan")
+    cv = f"{100 * std / abs(mean):.2f} %" if len(xs) > 1 and mean != 0 else "-"
+    return (f"| {label} | {len(xs)} | {number(mean)} | {number(std)} | {number(min(xs))} | {number(max(xs))} | {cv} "
+            f"| {', '.join(notes)} |")
+
+
+def write_tables(args, out, failed):
+    seeds = [k for k in range(1, args.n + 1) if (out / f"seed_{k}").is_dir()]
+    if not seeds:
+        sys.exit(f"realisations: no seed_K folders (K = 1..{args.n}) in {out}")
+    rows = {k: collect(out / f"seed_{k}") for k in seeds}
+    columns = [q[0] for q in QUANTITIES] + [EJECTION[0]]
+    with open(out / "realisations.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["seed", "directory"] + columns)
+        for k, row in rows.items():
+            w.writerow([k, f"seed_{k}"] + [cell(row[c]) for c in columns])
+    lines = [f"# Realisations of {Path(args.case).name}: runs of seeds {', '.join(map(str, seeds))} in {out}",
+             "", f"Mesh jitter {args.jitter} (this command's --jitter); "
+             f"overrides: {' '.join(args.overrides) or 'none'}.", "",
+             "| quantity | runs | mean | std (n-1) | min | max | CV | notes |",
+             "|---|---:|---:|---:|---:|---:|---:|---|"]
+    for key, _, _, label in QUANTITIES + [(EJECTION[0], None, None, EJECTION[1])]:
+        lines.append(statistics_line(label, [row[key] for row in rows.values()], len(seeds)))
+    if len(seeds) < args.n:
+        absent = sorted(set(range(1, args.n + 1)) - set(seeds))
+        lines += ["", f"No folder for seed(s) {', '.join(map(str, absent))}."]
+    if failed:
+        lines += ["", f"blastsim failed for seed(s) {', '.join(map(str, failed))} (see their blastsim.log): their rows "
+                  "hold whatever their folders had."]
+    text = "\n".join(lines) + "\n"
+    (out / "realisations.md").write_text(text)
+    print(text, end="")
+    print(f"written: {out / 'realisations.csv'}, {out / 'realisations.md'}")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("case", help="case file (TOML)")
+    p.add_argument("n", type=int, help="number of realisations (seeds 1..N)")
+    p.add_argument("overrides", nargs="*", help="extra section.key=value overrides for every run")
+    p.add_argument("--jitter", type=float, default=0.03, help="rock.mesh.jitter of every run (default 0.03)")
+    p.add_argument("--out", help="folder of the runs (default realisations_<case stem>)")
+    p.add_argument("--blastsim", help="the driver (default build-cpu/apps/blastsim/blastsim of this repository)")
+    p.add_argument("--resume", action="store_true", help="skip seeds whose run already reached time.end")
+    p.add_argument("--collect-only", action="store_true", help="run nothing; rebuild the tables from the folders")
+    args = p.parse_intermixed_args()
+    if args.n < 1:
+        p.error("N must be at least 1")
+    bad = [o for o in args.overrides if "=" not in o]
+    if bad:
+        p.error(f"overrides must read section.key=value: {' '.join(bad)}")
+    out = Path(args.out or f"realisations_{Path(args.case).stem}")
+    failed = [] if args.collect_only else run_all(args, out)
+    write_tables(args, out, failed)
+    if failed:
+        sys.exit(f"realisations: seed(s) {', '.join(map(str, failed))} failed")
+
+
+if __name__ == "__main__":
+    main()
