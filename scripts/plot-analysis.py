@@ -17,12 +17,10 @@ rock.pvd. Writes into OUTPUT_DIR (a figure whose input files are missing is skip
   damage_radii.png       crushed and cracked radius of every hole against time (fragmentation_series.csv)
 Needs Debian's python3-matplotlib and python3-vtk9 (/usr/bin/python3).
 """
-import csv
 import math
 import os
 import re
 import sys
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
@@ -31,40 +29,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blastsim_output import pvd_entries, read_csv, read_grid  # noqa: E402
 
 
-def read_csv(path):
-    """Numeric columns of a CSV file as numpy arrays keyed by header name (None if missing or empty).
-    A column that is not numeric (a probe name) is kept as a list of strings."""
-    if not os.path.exists(path):
-        return None
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    if len(rows) < 2:
-        return None
-    cols = {}
-    for k, name in enumerate(rows[0]):
-        values = [r[k] for r in rows[1:]]
-        try:
-            cols[name] = np.array([float(v) for v in values])
-        except ValueError:
-            cols[name] = values
-    return cols
 
 
-def pvd_entries(path):
-    """(time, file) pairs of a ParaView collection."""
-    if not os.path.exists(path):
-        return []
-    return [(float(d.get("timestep")), d.get("file")) for d in ET.parse(path).getroot().iter("DataSet")]
 
 
-def read_grid(path):
-    r = vtkXMLUnstructuredGridReader()
-    r.SetFileName(path)
-    r.Update()
-    return r.GetOutput()
 
 
 def cell_array(grid, name):

@@ -15,10 +15,8 @@ Writes into OUTPUT_DIR:
   energy_budget.png         the terms of the gas + rock energy budget and its residual
 Needs Debian's python3-matplotlib and python3-vtk9 (/usr/bin/python3).
 """
-import csv
 import os
 import sys
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
@@ -27,26 +25,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLUnstructuredGridReader  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blastsim_output import pvd_entries, read_csv, read_grid  # noqa: E402
 
 
-def read_csv(path):
-    """Columns of a CSV file as numpy arrays keyed by header name (None if the file is missing)."""
-    if not os.path.exists(path):
-        return None
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    if len(rows) < 2:
-        return None
-    return {name: np.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0])}
 
 
-def pvd_entries(path):
-    """(time, file) pairs of a ParaView collection."""
-    if not os.path.exists(path):
-        return []
-    root = ET.parse(path).getroot()
-    return [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")]
 
 
 def read_gas(path):
@@ -69,11 +54,6 @@ def read_gas(path):
     }
 
 
-def read_grid(path):
-    r = vtkXMLUnstructuredGridReader()
-    r.SetFileName(path)
-    r.Update()
-    return r.GetOutput()
 
 
 def read_rock(path):

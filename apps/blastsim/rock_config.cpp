@@ -167,6 +167,7 @@ void read_rock_probes(TableReader& probe, RockCaseConfig& c) {
     RockProbe q;
     q.name = p.text("name", {});
     q.position = p.pair("position", "m");
+    if (p.has("until")) q.until = p.number("until", "s", Range::positive());
     p.finish();
     check_output_name("probe.rock_point", q.name);
     names.push_back(q.name);

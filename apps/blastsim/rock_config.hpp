@@ -32,6 +32,7 @@ struct RockMeshSpec {
 struct RockProbe {
   std::string name;
   std::array<double, 2> position{};  //!< [m] in the initial mesh
+  double until = 1e308;              //!< [s] end of the window in which the peak counts
 };
 
 //! A hole around which the damage zone is measured ([[analysis.hole]]).

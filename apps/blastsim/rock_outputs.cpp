@@ -101,9 +101,10 @@ RockModel make_rock_model(const RockCaseConfig& c) {
     solver.set_edge_pressure(fdem::boundary_slots(topo, group->second, l.boundary), l.pressure);
   }
   std::vector<std::array<double, 2>> probe_points;
-  for (const RockProbe& p : c.probes) probe_points.push_back(p.position);
+  std::vector<double> probe_until;
+  for (const RockProbe& p : c.probes) probe_points.push_back(p.position), probe_until.push_back(p.until);
   try {
-    solver.set_probes(probe_points);
+    solver.set_probes(probe_points, probe_until);
   } catch (const InputError&) {
     for (size_t k = 0; k < c.probes.size(); ++k) {  // name the first probe outside the rock
       try {
@@ -276,8 +277,10 @@ std::string RockOutputs::summary() const {
                        d.total_mass > 0 ? 100 * d.fines_mass / d.total_mass : 0.0, 100 * largest_fraction_);
     out += fmt::format("  X20 {}, X50 {}, X80 {} (sieve size: minimum Feret width); oversize (> {:g} m) {:.2f} % of the mass\n",
                        size(d.x20), size(d.x50), size(d.x80), a.oversize, 100 * d.oversize_fraction);
-    out += d.swebrec.valid ? fmt::format("  Swebrec fit: x50 {:.4f} m, xmax {:.4f} m, b {:.3f}; R^2 {:.4f}\n", d.swebrec.x50,
-                                         d.swebrec.xmax, d.swebrec.b, d.swebrec.r_squared)
+    out += d.swebrec.valid ? fmt::format("  Swebrec fit: x50 {:.4f} m, xmax {:.4f} m{}, b {:.3f}; R^2 {:.4f}\n", d.swebrec.x50,
+                                         d.swebrec.xmax,
+                                         d.swebrec.xmax_at_bound ? " (at its bound 100 x50: not determined by these pieces)" : "",
+                                         d.swebrec.b, d.swebrec.r_squared)
                            : std::string("  Swebrec fit: too few sized fragments (needs 4 points with 0 < P < 1)\n");
     out += d.rosin_rammler.valid
                ? fmt::format("  Rosin-Rammler fit: x50 {:.4f} m, n {:.3f}; R^2 {:.4f}\n", d.rosin_rammler.x50,
@@ -299,8 +302,10 @@ std::string RockOutputs::summary() const {
       const std::string dist = a.holes.empty() ? std::string()
                                                : fmt::format(", {:.4f} m from hole 0",
                                                              std::hypot(q[0] - a.holes[0].center[0], q[1] - a.holes[0].center[1]));
-      out += fmt::format("  {} at ({:g}, {:g}) m{}: PPV {:.4g} m/s at {:.4f} ms\n", c_.probes[k].name, q[0], q[1], dist,
-                         p[k].peak_speed, 1e3 * p[k].peak_time);
+      const double until = c_.probes[k].until;
+      out += fmt::format("  {} at ({:g}, {:g}) m{}: PPV {:.4g} m/s at {:.4f} ms{}\n", c_.probes[k].name, q[0], q[1], dist,
+                         p[k].peak_speed, 1e3 * p[k].peak_time,
+                         until < 1e300 ? fmt::format(" (window to {:.4f} ms)", 1e3 * until) : std::string());
     }
   }
   return out;

@@ -246,10 +246,14 @@ SwebrecFit fit_swebrec(const std::vector<double>& size, const std::vector<double
   interior_points(size, passing, x, P);
   if (x.size() < 4) return fit;
   const double largest = *std::max_element(size.begin(), size.end());
-  // Parameters q = (ln x50, ln(xmax / x50 - 1), ln b): xmax > x50 > 0 and b > 0 for every q.
-  auto model = [](const std::array<double, 3>& p, double xi) {
+  // Parameters q = (ln x50, logit((xmax / x50 - 1) / (R - 1)), ln b): x50 > 0, b > 0 and 1 < xmax / x50 < R for
+  // every q. Without the bound R a sample of a few large pieces drives xmax to infinity and b with it (the
+  // function's limit is a log-logistic law); R = 100 is far above the ratios of measured muck piles (2-20).
+  constexpr double R = kSwebrecMaxRatio;
+  auto ratio = [](double q1) { return 1 + (R - 1) / (1 + std::exp(-q1)); };
+  auto model = [&](const std::array<double, 3>& p, double xi) {
     const double x50 = std::exp(p[0]);
-    return swebrec_passing(xi, x50, x50 * (1 + std::exp(p[1])), std::exp(p[2]));
+    return swebrec_passing(xi, x50, x50 * ratio(p[1]), std::exp(p[2]));
   };
   // Start: for trial xmax above the largest fragment, ln(1/P - 1) = b ln ln(xmax/x) - b ln ln(xmax/x50) is a
   // straight line in ln ln(xmax/x); keep the trial whose line fits P best.
@@ -262,16 +266,18 @@ SwebrecFit fit_swebrec(const std::vector<double>& size, const std::vector<double
     double b, intercept;
     if (!line_fit(X, Y, b, intercept) || !(b > 0)) continue;
     const double x50 = xmax / std::exp(std::exp(-intercept / b));
-    if (!(x50 > 0 && x50 < xmax)) continue;
-    const std::array<double, 3> q{std::log(x50), std::log(xmax / x50 - 1), std::log(b)};
+    if (!(x50 > 0 && x50 < xmax && xmax < 0.99 * R * x50)) continue;
+    const double u = (xmax / x50 - 1) / (R - 1);  // in (0, 1)
+    const std::array<double, 3> q{std::log(x50), std::log(u / (1 - u)), std::log(b)};
     double sse = 0;
     for (size_t i = 0; i < x.size(); ++i) sse += std::pow(model(q, x[i]) - P[i], 2);
     if (sse < best_sse) best_sse = sse, best = q;
   }
   if (!std::isfinite(best_sse)) return fit;
   levenberg_marquardt<3>(best, x, P, model);
-  fit.x50 = std::exp(best[0]), fit.xmax = fit.x50 * (1 + std::exp(best[1])), fit.b = std::exp(best[2]);
+  fit.x50 = std::exp(best[0]), fit.xmax = fit.x50 * ratio(best[1]), fit.b = std::exp(best[2]);
   fit.valid = std::isfinite(fit.x50) && std::isfinite(fit.xmax) && std::isfinite(fit.b);
+  fit.xmax_at_bound = fit.xmax > 0.99 * R * fit.x50;
   fit_quality(fit, x, P, [&](double xi) { return swebrec_passing(xi, fit.x50, fit.xmax, fit.b); });
   return fit;
 }

@@ -406,7 +406,10 @@ std::vector<int> RockSolver::fragment_labels() const {
   throw std::logic_error("fragment_labels: label propagation did not converge");
 }
 
-void RockSolver::set_probes(const std::vector<std::array<double, 2>>& points) {
+void RockSolver::set_probes(const std::vector<std::array<double, 2>>& points, const std::vector<double>& until) {
+  if (!until.empty() && until.size() != points.size())
+    throw InputError("set_probes: " + std::to_string(until.size()) + " window ends for " + std::to_string(points.size()) +
+                     " probes");
   const std::vector<double> px = to_host(a_->node_params.x0), py = to_host(a_->node_params.y0);
   std::vector<ProbeStation> stations;
   for (size_t k = 0; k < points.size(); ++k) {
@@ -426,7 +429,7 @@ void RockSolver::set_probes(const std::vector<std::array<double, 2>>& points) {
       os << "rock probe " << k << " at (" << x << ", " << y << ") m lies in no triangle of the rock mesh";
       throw InputError(os.str());
     }
-    stations.push_back(ProbeStation{found, {w[0], w[1], w[2]}});
+    stations.push_back(ProbeStation{found, {w[0], w[1], w[2]}, until.empty() ? 1e308 : until[k]});
   }
   probes_ = static_cast<int>(stations.size());
   copy_from_host(a_->probe_station, stations);

@@ -220,6 +220,19 @@ TEST_CASE("A4: Swebrec and Rosin-Rammler fits recover the parameters of syntheti
     CHECK(std::fabs(f.n / n - 1) < 0.02);
     CHECK(std::fabs(d.x80 / (x50 * std::pow(-std::log(0.2) / std::log(2.0), 1 / n)) - 1) < 0.02);
   }
+  SECTION("a few large pieces: the Swebrec fit stays bounded") {
+    // 12 pieces of nearly one size (a disc split into wedges): without a bound xmax runs off to infinity.
+    std::vector<Fragment> f(12);
+    for (int i = 0; i < 12; ++i) f[i].mass = 1.0, f[i].triangles = 100, f[i].sieve_size = 0.8 + 0.01 * i;
+    const SizeDistribution d = size_distribution(f, 0.5);
+    std::printf("A4: 12 pieces of 0.80-0.91 m: Swebrec x50 %.4f m, xmax %.4g m (at bound: %d), b %.4g; "
+                "Rosin-Rammler x50 %.4f m, n %.4g\n", d.swebrec.x50, d.swebrec.xmax, d.swebrec.xmax_at_bound, d.swebrec.b,
+                d.rosin_rammler.x50, d.rosin_rammler.n);
+    REQUIRE(d.swebrec.valid);
+    CHECK(d.swebrec.xmax <= kSwebrecMaxRatio * d.swebrec.x50);
+    CHECK(std::isfinite(d.swebrec.b));
+    CHECK(std::fabs(d.swebrec.x50 / d.x50 - 1) < 0.05);
+  }
   SECTION("fines pass every sieve; sizes below them are 0") {
     std::vector<Fragment> f(3);
     f[0].mass = 6, f[0].fines = true;          // 60 % fines

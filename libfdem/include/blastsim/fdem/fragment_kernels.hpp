@@ -47,6 +47,7 @@ struct LabelSweepKernel {
 struct ProbeStation {
   int triangle;
   double weight[3];
+  double until;  //!< [s] the peak counts up to this time only (a window: e.g. the first arrival)
 };
 
 //! Peak particle velocity of a probe so far: the largest speed |v| (the peak vector sum), the time of it,
@@ -63,7 +64,8 @@ BLAST_HD inline void probe_velocity(const ProbeStation& p, const double* vx, con
   for (int k = 0; k < 3; ++k) ux += p.weight[k] * vx[3 * p.triangle + k], uy += p.weight[k] * vy[3 * p.triangle + k];
 }
 
-//! Updates each probe's peak with the current velocity (one thread per probe; called after every step).
+//! Updates each probe's peak with the current velocity within its window (one thread per probe; called after
+//! every step).
 struct ProbePeakKernel {
   const ProbeStation* station;
   const double* vx;
@@ -74,7 +76,7 @@ struct ProbePeakKernel {
     double ux, uy;
     probe_velocity(station[k], vx, vy, ux, uy);
     const double s = sqrt(ux * ux + uy * uy);
-    if (s > peak[k].speed) peak[k] = ProbePeak{s, time, ux, uy};
+    if (s > peak[k].speed && time <= station[k].until) peak[k] = ProbePeak{s, time, ux, uy};
   }
 };
 

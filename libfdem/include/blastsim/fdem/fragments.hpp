@@ -47,10 +47,13 @@ double rosin_rammler_passing(double x, double x50, double n);
 
 //! A least-squares fit of a passing function to (size, passing) points: its parameters, R^2 and the RMS
 //! residual of the passing fraction.
+//! Largest xmax / x50 a Swebrec fit may reach (measured muck piles: 2 to 20).
+inline constexpr double kSwebrecMaxRatio = 100;
 struct SwebrecFit {
   bool valid = false;
   double x50 = 0, xmax = 0, b = 0;  //!< [m], [m], [-]
   double r_squared = 0, rms = 0;
+  bool xmax_at_bound = false;  //!< xmax reached kSwebrecMaxRatio x x50: the data do not determine it
 };
 struct RosinRammlerFit {
   bool valid = false;
@@ -58,7 +61,8 @@ struct RosinRammlerFit {
   double r_squared = 0, rms = 0;
 };
 //! Fits minimise the sum of squared passing residuals over the points with 0 < P < 1 (Levenberg-Marquardt from
-//! the linearised estimates); they need at least 3 (Rosin-Rammler) or 4 (Swebrec) such points.
+//! the linearised estimates); they need at least 3 (Rosin-Rammler) or 4 (Swebrec) such points. The Swebrec
+//! fit keeps xmax / x50 below kSwebrecMaxRatio.
 SwebrecFit fit_swebrec(const std::vector<double>& size, const std::vector<double>& passing);
 RosinRammlerFit fit_rosin_rammler(const std::vector<double>& size, const std::vector<double>& passing);
 

@@ -115,9 +115,10 @@ class RockSolver {
   std::vector<int> fragment_labels() const;
   //! Sets velocity probes at points [m] of the initial mesh (replacing any earlier set; their peaks start at
   //! zero). Each follows the material point (the triangle holding it, by barycentric weights); every step()
-  //! then updates its peak particle velocity on the device. Throws InputError naming a point that lies in no
-  //! triangle.
-  void set_probes(const std::vector<std::array<double, 2>>& points);
+  //! then updates its peak particle velocity on the device, up to the time `until` [s] of the probe (empty:
+  //! no end; e.g. the first arrival of a wave, before reflections and the throw of the piece). Throws
+  //! InputError naming a point that lies in no triangle.
+  void set_probes(const std::vector<std::array<double, 2>>& points, const std::vector<double>& until = {});
   //! Per probe: its current velocity and the peak so far (host copy).
   std::vector<ProbeSample> probe_samples() const;
   int probe_count() const { return probes_; }
