@@ -18,3 +18,4 @@ done
 py=/usr/bin/python3
 [ -x "$py" ] || py=python3
 "$py" "$root/scripts/plot-single-hole.py" "$out"
+"$py" "$root/scripts/plot-analysis.py" "$out"

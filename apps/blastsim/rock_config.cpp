@@ -152,6 +152,7 @@ void read_analysis_section(TableReader& root, RockCaseConfig& c) {
     DamageHole d;
     d.center = h.pair("center", "m");
     d.radius = h.number("radius", "m", Range::positive());
+    d.behind = h.pair("behind", "", std::array<double, 2>{0.0, 0.0});
     h.finish();
     s.holes.push_back(d);
   }

@@ -39,6 +39,7 @@ struct RockProbe {
 struct DamageHole {
   std::array<double, 2> center{};  //!< [m]
   double radius = 0;               //!< [m]
+  std::array<double, 2> behind{};  //!< direction away from the free face: only the half plane behind counts ([0, 0]: all round)
 };
 
 //! What the run reports about fragments and damage at every snapshot ([analysis]).

@@ -218,7 +218,7 @@ void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& l
   analysed_at_ = solver_.time();
   zones_.clear();
   for (const DamageHole& h : a.holes)
-    zones_.push_back(fdem::damage_zone(s, h.center, h.radius, ring_width_, a.crushed_fraction));
+    zones_.push_back(fdem::damage_zone(s, h.center, h.radius, ring_width_, a.crushed_fraction, h.behind));
   if (probes_) {  // ppv.csv: the peak so far at each probe, with its distance from the first hole
     const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
     write_atomically((dir_ / "ppv.csv").string(), [&](std::ostream& out) {
@@ -289,10 +289,13 @@ std::string RockOutputs::summary() const {
   }
   for (size_t k = 0; k < zones_.size(); ++k) {
     const fdem::DamageZone& z = zones_[k];
-    out += fmt::format("damage zone around hole {} at ({:g}, {:g}) m, radius {:g} m (rings of {:.4f} m): crushed to {:.4f} m "
+    const std::array<double, 2>& b = a.holes[k].behind;
+    out += fmt::format("damage zone around hole {} at ({:g}, {:g}) m, radius {:g} m{} (rings of {:.4f} m): crushed to {:.4f} m "
                        "({:.1f} hole radii), cracked to {:.4f} m ({:.1f} hole radii)\n",
-                       k, z.center[0], z.center[1], z.hole_radius, ring_width_, z.crushed_radius,
-                       z.crushed_radius / z.hole_radius, z.cracked_radius, z.cracked_radius / z.hole_radius);
+                       k, z.center[0], z.center[1], z.hole_radius,
+                       b[0] == 0 && b[1] == 0 ? std::string() : fmt::format(", behind it along ({:g}, {:g})", b[0], b[1]),
+                       ring_width_, z.crushed_radius, z.crushed_radius / z.hole_radius, z.cracked_radius,
+                       z.cracked_radius / z.hole_radius);
   }
   if (!c_.probes.empty()) {
     out += "peak particle velocity (largest |v| at each rock probe, updated every step):\n";

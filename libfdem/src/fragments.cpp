@@ -338,7 +338,7 @@ std::vector<double> triangle_damage(const RockSnapshot& s) {
 }
 
 DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& center, double hole_radius, double ring_width,
-                       double crushed_fraction) {
+                       double crushed_fraction, const std::array<double, 2>& behind) {
   if (!(ring_width > 0)) throw InputError("damage_zone: ring width = " + std::to_string(ring_width) + " m: must be > 0");
   if (!(crushed_fraction > 0 && crushed_fraction <= 1))
     throw InputError("damage_zone: crushed fraction = " + std::to_string(crushed_fraction) + ": must be in (0, 1]");
@@ -350,7 +350,7 @@ DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& cente
     const int a = s.joint_nodes[j][0], b = s.joint_nodes[j][1];
     const double mx = 0.5 * (s.x0[a] + s.x0[b]) - center[0], my = 0.5 * (s.y0[a] + s.y0[b]) - center[1];
     const double r = std::hypot(mx, my);
-    if (r < hole_radius) continue;
+    if (r < hole_radius || mx * behind[0] + my * behind[1] < 0) continue;
     const size_t k = static_cast<size_t>((r - hole_radius) / ring_width);
     if (k >= rings.size()) rings.resize(k + 1);
     const double len = std::hypot(s.x0[b] - s.x0[a], s.y0[b] - s.y0[a]);

@@ -268,6 +268,14 @@ TEST_CASE("A5: damage per triangle and the crushed and cracked zones around a ho
               z.crushed_radius, r1, z.cracked_radius, r2, w);
   CHECK(std::fabs(z.crushed_radius - r1) <= w);
   CHECK(std::fabs(z.cracked_radius - r2) <= w);
+  // Behind the hole only: the crack along +x lies in the half plane x >= 0, not in x <= 0.
+  const DamageZone ahead = damage_zone(snap, {0, 0}, a, w, 0.5, {1.0, 0.0});
+  const DamageZone back = damage_zone(snap, {0, 0}, a, w, 0.5, {-1.0, 0.0});
+  std::printf("A5: half planes: x >= 0 cracked to %.3f m, x <= 0 cracked to %.3f m (crushed %.3f, %.3f m)\n",
+              ahead.cracked_radius, back.cracked_radius, ahead.crushed_radius, back.crushed_radius);
+  CHECK(std::fabs(ahead.cracked_radius - r2) <= w);
+  CHECK(std::fabs(back.cracked_radius - r1) <= w);
+  CHECK(std::fabs(back.crushed_radius - r1) <= w);
   const std::vector<double> d = triangle_damage(snap);
   for (int t = 0; t < topo.triangle_count(); ++t) {
     double expected = 0;

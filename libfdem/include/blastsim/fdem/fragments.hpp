@@ -97,7 +97,9 @@ std::vector<double> triangle_damage(const RockSnapshot& s);
 //! of the last ring, counted from the wall, in which every ring has at least `crushed_fraction` of its joint
 //! length broken; the cracked zone to the outer radius of the last ring in which every ring from the wall has
 //! some broken joint (cracks connected to the hole, not spalls far from it). Radii from the centre [m]; equal
-//! to the hole radius when the zone is empty.
+//! to the hole radius when the zone is empty. With a nonzero `behind` direction only the joints in the half
+//! plane (m - centre) . behind >= 0 count: in a bench, the rock behind a hole (away from the free face), whose
+//! damage is the depth of the back break.
 struct DamageZone {
   std::array<double, 2> center{};
   double hole_radius = 0;
@@ -105,6 +107,6 @@ struct DamageZone {
   double cracked_radius = 0;
 };
 DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& center, double hole_radius, double ring_width,
-                       double crushed_fraction = 0.5);
+                       double crushed_fraction = 0.5, const std::array<double, 2>& behind = {0.0, 0.0});
 
 }  // namespace blastsim::fdem
