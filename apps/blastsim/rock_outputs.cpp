@@ -199,7 +199,7 @@ void RockOutputs::snapshot() {
   RockCellFields cells;
   const auto t0 = std::chrono::steady_clock::now();
   if (c_.analysis.fragments) cells.fragment_id = solver_.fragment_labels();
-  cells.damage = fdem::triangle_damage(s);
+  if (c_.vtk) cells.damage = fdem::triangle_damage(s);  // for the VTU only
   analyse(s, cells.fragment_id);
   analysis_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++analyses_;

@@ -437,22 +437,19 @@ void RockSolver::set_probes(const std::vector<std::array<double, 2>>& points, co
 }
 
 std::vector<ProbeSample> RockSolver::probe_samples() const {
-  const std::vector<ProbeStation> stations = to_host(a_->probe_station);
+  // The current velocity at each probe, interpolated on the device (one thread per probe) and copied once.
+  a_->probe_velocity.resize(probes_);
+  const ProbeStation* station = device_ptr(a_->probe_station);
+  const double* vx = device_ptr(a_->nodes.vx);
+  const double* vy = device_ptr(a_->nodes.vy);
+  Vec2* now = device_ptr(a_->probe_velocity);
+  for_each_index("fdem.probes.velocity", probes_,
+                 [=] BLAST_HD(index_t k) { probe_velocity(station[k], vx, vy, now[k].x, now[k].y); });
+  const std::vector<Vec2> v = to_host(a_->probe_velocity);
   const std::vector<ProbePeak> peaks = to_host(a_->probe_peak);
-  std::vector<double> vx(3 * stations.size()), vy(3 * stations.size());
-  for (size_t k = 0; k < stations.size(); ++k)  // the three node velocities of each probe's triangle
-    for (int q = 0; q < 3; ++q) {
-      const size_t n = 3 * static_cast<size_t>(stations[k].triangle) + q;
-      vx[3 * k + q] = a_->nodes.vx[n], vy[3 * k + q] = a_->nodes.vy[n];
-    }
-  std::vector<ProbeSample> out(stations.size());
-  for (size_t k = 0; k < stations.size(); ++k) {
-    ProbeStation local = stations[k];
-    local.triangle = static_cast<int>(k);  // indexes the gathered copies
-    probe_velocity(local, vx.data(), vy.data(), out[k].vx, out[k].vy);
-    out[k].peak_speed = peaks[k].speed, out[k].peak_time = peaks[k].time;
-    out[k].peak_vx = peaks[k].vx, out[k].peak_vy = peaks[k].vy;
-  }
+  std::vector<ProbeSample> out(v.size());
+  for (size_t k = 0; k < v.size(); ++k)
+    out[k] = ProbeSample{v[k].x, v[k].y, peaks[k].speed, peaks[k].time, peaks[k].vx, peaks[k].vy};
   return out;
 }
 

@@ -67,6 +67,7 @@ struct RockArrays {
   // velocity probes (set_probes): their stations (fixed) and peaks (checkpointed as rock.probes.peak)
   DeviceVector<ProbeStation> probe_station;
   DeviceVector<ProbePeak> probe_peak;
+  DeviceVector<Vec2> probe_velocity;  // work array of probe_samples()
   // work arrays of fragment_labels() (two label buffers), sized on first use
   DeviceVector<int> label_a, label_b;
 
