@@ -4,6 +4,7 @@
 
 #include "blastsim/cip/gas_types.hpp"
 #include "blastsim/ibm/blasthole_monitor.hpp"
+#include "blastsim/ibm/crack_gas.hpp"
 #include "case_config.hpp"
 #include "rock_config.hpp"
 
@@ -33,6 +34,10 @@ struct CoupledCaseConfig {
     double interval = 1e-6;  //!< [s] between samples
   };
   std::optional<Blasthole> blasthole;
+  //! [crack_gas]: broken joints carry their own gas (docs/coupling.md "Gas in the cracks"); off by default
+  //! while its energy budget in a fragmenting blast is open (docs/coupling.md).
+  bool crack_gas = false;
+  ibm::CrackGasOptions crack_gas_options;
   std::vector<std::string> echo;
 };
 

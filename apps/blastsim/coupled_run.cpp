@@ -44,12 +44,13 @@ class CouplingSeries {
     const fdem::RockEnergies& e = b.rock;
     const ibm::CouplingDiagnostics& d = b.coupling;
     std::string row = fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},"
-                         "{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{},{},{:.9e}",
+                         "{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{},{},{:.9e},{:.9e},{:.9e},{},{},{:.6e}",
                          gas_.steps(), gas_.time(), g.mass, g.internal_energy, g.kinetic_energy, b.gas_energy_out, e.kinetic,
                          e.strain, e.joint_work, e.fracture_dissipated, e.contact_work, e.damping_dissipated,
                          d.gas_work_on_rock, b.other_external_work, d.transitions.energy_created, b.residual,
                          b.residual / initial_, d.gas_force_on_rock[0], d.gas_force_on_rock[1], e.broken_joints,
-                         e.crack_length, d.transitions.covered, d.transitions.uncovered, b.immersed_face_work);
+                         e.crack_length, d.transitions.covered, d.transitions.uncovered, b.immersed_face_work,
+                         d.crack.mass, d.crack.energy, d.crack.gas_segments, d.crack.wet_segments, d.crack.max_pressure);
     for (const MonitorRegion& r : c_.regions) {
       const cip::GasTotals t = coupler_.gas_in(r.region);
       row += fmt::format(",{:.9e},{:.9e}", t.mass, t.total_energy());
@@ -72,7 +73,8 @@ class CouplingSeries {
                     "contact_work_J_per_m,damping_dissipated_J_per_m,gas_work_on_rock_J_per_m,other_external_work_J_per_m,"
                     "transition_energy_J_per_m,budget_residual_J_per_m,budget_relative,gas_force_x_N_per_m,"
                     "gas_force_y_N_per_m,broken_joints,crack_length_m,cells_covered,cells_uncovered,"
-                    "immersed_face_work_J_per_m";
+                    "immersed_face_work_J_per_m,crack_gas_mass_kg_per_m,crack_gas_energy_J_per_m,crack_gas_segments,"
+                    "crack_wet_segments,crack_gas_pressure_max_Pa";
     for (const MonitorRegion& r : c.regions) h += fmt::format(",{0}_mass_kg_per_m,{0}_energy_J_per_m", r.name);
     return h;
   }
@@ -82,8 +84,9 @@ class CouplingSeries {
 //! monitor.blasthole.interval, and summary.txt with the events the paper reports.
 class BlastholeFiles {
  public:
-  BlastholeFiles(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, bool resume)
-      : c_(c), gas_(gas), rock_(rock) {
+  BlastholeFiles(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock,
+                 const ibm::GasRockCoupler& coupler, bool resume)
+      : c_(c), gas_(gas), rock_(rock), coupler_(coupler) {
     if (!c.blasthole) return;
     monitor_.emplace(c.blasthole->geometry, c.gas.grid, c.gas.eos.pressure(c.gas.ambient.density, c.gas.ambient.internal_energy));
     file_.emplace((make_output_dir(c.gas.output_directory) / "wall_series.csv").string(), wall_header(), resume);
@@ -93,10 +96,16 @@ class BlastholeFiles {
     if (!monitor_ || gas_.time() < next_ - 1e-12 * c_.gas.end_time) return;
     advance_schedule(next_, c_.blasthole->interval, gas_.time() + 1e-12 * c_.gas.end_time);
     const ibm::BlastholeSample s = monitor_->sample(gas_, rock_);
-    file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e}", s.time,
+    const ibm::BlastholeGeometry& g = monitor_->geometry();
+    const double crack_outer = coupler_.crack_gas()
+                                   ? coupler_.crack_mouth_pressure(g.center, 0.5 * (g.hole_radius + g.outer_radius))
+                                   : 0.0;
+    if (crack_arrival_ < 0 && crack_outer > 2 * monitor_->ambient_pressure())
+      crack_arrival_ = s.time, crack_arrival_pressure_ = crack_outer;
+    file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}", s.time,
                            s.wall_pressure_mean, s.wall_pressure_min, s.wall_pressure_max, s.wall_stress_mean,
                            s.wall_stress_min, s.wall_stress_max, s.wall_stress_spread, s.broken_joints, s.crack_length,
-                           s.outer_pressure_max, s.outer_speed_max, s.outer_flux_speed));
+                           s.outer_pressure_max, s.outer_speed_max, s.outer_flux_speed, crack_outer));
   }
 
   //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
@@ -127,6 +136,11 @@ class BlastholeFiles {
              "  from the first outflow to the end of the run\n";
       out << fmt::format("gas speed at the onset: {}\n  the largest outward speed among those points at the first "
                          "outflow sample\n", ev.ejection < 0 ? std::string("-") : fmt::format("{:.1f} m/s", ev.ejection_speed));
+      if (coupler_.crack_gas())
+        out << fmt::format("crack gas reaches the outer free face: {}\n  the first sample where the gas in a crack, at a "
+                           "crack mouth on the rock's outer surface, exceeds twice the\n  ambient pressure; pressure "
+                           "there then {:.4g} Pa\n",
+                           when(crack_arrival_), crack_arrival_pressure_);
       out << fmt::format("broken joints: {}; crack length {:.4f} m; fracture energy {:.4e} J/m\n", e.broken_joints,
                          e.crack_length, e.fracture_dissipated);
       out << analysis;
@@ -137,12 +151,15 @@ class BlastholeFiles {
     w.value("out.blasthole.next", next_);
     w.value("out.blasthole.events", monitor_ ? monitor_->events() : ibm::BlastholeEvents{});
     w.value("out.blasthole.csv_size", monitor_ ? file_->size() : std::uint64_t{0});
+    w.value("out.blasthole.crack_arrival", std::array<double, 2>{crack_arrival_, crack_arrival_pressure_});
   }
   void read_checkpoint(CheckpointReader& r) {
     next_ = r.value<double>("out.blasthole.next");
     if (!std::isfinite(next_)) r.fail("out.blasthole.next", "not finite");
     const ibm::BlastholeEvents ev = r.value<ibm::BlastholeEvents>("out.blasthole.events");
     const std::uint64_t size = r.value<std::uint64_t>("out.blasthole.csv_size");
+    const auto arrival = r.value<std::array<double, 2>>("out.blasthole.crack_arrival");
+    crack_arrival_ = arrival[0], crack_arrival_pressure_ = arrival[1];
     if (!monitor_) return;
     monitor_->restore(ev);
     file_->truncate_to(size);
@@ -152,15 +169,18 @@ class BlastholeFiles {
   const CoupledCaseConfig& c_;
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
+  const ibm::GasRockCoupler& coupler_;
   std::optional<ibm::BlastholeMonitor> monitor_;  // only with [monitor.blasthole]
   std::optional<CsvSeries> file_;
   double next_ = 0;  // time of the next sample [s]
+  double crack_arrival_ = -1, crack_arrival_pressure_ = 0;  // crack gas at the outer surface: first sample [s], p [Pa]
 
   static std::string wall_header() {
     return "time_s,gas_pressure_wall_mean_Pa,gas_pressure_wall_min_Pa,gas_pressure_wall_max_Pa,"
            "rock_radial_stress_wall_mean_Pa,rock_radial_stress_wall_min_Pa,rock_radial_stress_wall_max_Pa,"
            "rock_radial_stress_wall_sector_spread,broken_joints,crack_length_m,outer_surface_gas_pressure_max_Pa,"
-           "outer_surface_gas_speed_max_m_per_s,outer_surface_gas_speed_flux_mean_m_per_s";
+           "outer_surface_gas_speed_max_m_per_s,outer_surface_gas_speed_flux_mean_m_per_s,"
+           "outer_surface_crack_gas_pressure_max_Pa";
   }
 };
 
@@ -237,8 +257,10 @@ class CoupledRunOutputs : public RunOutputs {
   CoupledRunOutputs(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler,
                     const RockModel& model, std::ostream& log, bool resume)
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler), log_(log), gas_out_(c.gas, gas, log, false, resume),
-        rock_out_(c.rock, model, resume), series_(c, gas, rock, coupler, resume), blasthole_(c, gas, rock, resume),
-        checkpoint_path_((std::filesystem::path(c.gas.output_directory) / "checkpoint.bin").string()) {}
+        rock_out_(c.rock, model, resume), series_(c, gas, rock, coupler, resume), blasthole_(c, gas, rock, coupler, resume),
+        checkpoint_path_((std::filesystem::path(c.gas.output_directory) / "checkpoint.bin").string()) {
+    rock_out_.set_crack_gas(coupler.crack_gas());
+  }
 
   //! The state at the start of a new run.
   void start() {
@@ -342,12 +364,17 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   cip::GasSolver gas(gc.grid, gc.materials(), gc.solver);
   gas.initialise([&](double x, double y) { return gc.initial_state(x, y); });
   ibm::GasRockCoupler coupler(gas, rock, gc.ambient);
+  if (c.crack_gas) coupler.enable_crack_gas(c.crack_gas_options);
   const bool resume = options.restart;
   if (!resume) coupler.rock_to_gas();  // masks first: cells under rock take the ambient state before any output
   log << fmt::format("coupled: gas {} x {} cells of {:.4g} x {:.4g} m ({} covered by rock); rock {} triangles, {} joints, "
-                     "stable step {:.4g} s\n",
+                     "stable step {:.4g} s; {}\n",
                      gc.grid.nx, gc.grid.ny, gc.grid.dx, gc.grid.dy, coupler.inactive_cells(), rock.triangle_count(),
-                     rock.joint_count(), rock.stable_dt());
+                     rock.joint_count(), rock.stable_dt(),
+                     c.crack_gas ? fmt::format("crack gas on (residual aperture {:.3g} m, friction factor {:.3g}, {} junctions)",
+                                               c.crack_gas_options.residual_aperture, c.crack_gas_options.friction_factor,
+                                               coupler.crack_gas()->junctions())
+                                 : std::string("crack gas off"));
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
   const std::string checkpoint_path = (std::filesystem::path(gc.output_directory) / "checkpoint.bin").string();
   std::optional<CheckpointReader> reader;

@@ -261,6 +261,15 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
     c.regions.push_back(m);
   }
   monitor.finish();
+  TableReader crack = root.table("crack_gas");
+  c.crack_gas = crack.boolean("enabled", false);
+  ibm::CrackGasOptions& o = c.crack_gas_options;
+  o.residual_aperture = crack.number("residual_aperture", "m", Range::positive(), o.residual_aperture);
+  o.friction_factor = crack.number("friction_factor", "", Range::non_negative(), o.friction_factor);
+  o.viscosity = crack.number("viscosity", "Pa s", Range::non_negative(), o.viscosity);
+  o.courant = crack.number("courant", "", Range::half_open(0, 1), o.courant);
+  o.second_order = crack.boolean("second_order", o.second_order);
+  crack.finish();
   std::vector<std::string> region_names;
   for (const MonitorRegion& m : c.regions) region_names.push_back(m.name);
   check_unique_names("monitor.region", region_names);

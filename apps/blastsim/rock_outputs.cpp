@@ -208,7 +208,20 @@ void RockOutputs::snapshot() {
   const std::string rock_name = fmt::format("rock_{:06d}.vtu", index);
   const std::string joints_name = fmt::format("joints_{:06d}.vtu", index);
   write_rock_vtu((dir_ / rock_name).string(), s, cells);
-  write_joints_vtu((dir_ / joints_name).string(), s);
+  JointGasFields gas;
+  if (crack_) {
+    const std::vector<std::uint8_t> kind = crack_->kinds();
+    const std::vector<double> w = crack_->apertures();
+    const std::vector<ibm::ChannelPrimitive> p = crack_->primitives();
+    const std::vector<ibm::ChannelConserved> m = crack_->gas();
+    const std::size_t n = kind.size();
+    gas.aperture.assign(n, 0.0), gas.gas_pressure.assign(n, 0.0), gas.gas_mass.assign(n, 0.0);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (kind[j] != ibm::kSegmentNone) gas.aperture[j] = w[j];
+      if (kind[j] == ibm::kSegmentGas) gas.gas_pressure[j] = p[j].p, gas.gas_mass[j] = m[j].m;
+    }
+  }
+  write_joints_vtu((dir_ / joints_name).string(), s, gas);
   rock_pvd_.add(solver_.time(), rock_name);
   joints_pvd_.add(solver_.time(), joints_name);
 }

@@ -8,6 +8,7 @@
 #include "blastsim/fdem/fragments.hpp"
 #include "blastsim/fdem/gmsh_mesh.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/ibm/crack_gas.hpp"
 #include "output_checkpoint.hpp"
 #include "rock_config.hpp"
 
@@ -43,6 +44,8 @@ class RockOutputs {
   //! `resume`: a restart, whose read_checkpoint() follows (files are kept, not started anew).
   RockOutputs(const RockCaseConfig& c, const RockModel& model, bool resume = false);
   void snapshot();             //!< one .vtu pair (when output.vtk) and the analysis files
+  //! A coupled run's crack gas, whose aperture, pressure and mass the joints' VTU then carries.
+  void set_crack_gas(const ibm::CrackGas* crack) { crack_ = crack; }
   fdem::RockEnergies monitor();  //!< one row of rock_series.csv (and rock_probes.csv); returns the energies
   void write_checkpoint(CheckpointWriter& w);  //!< snapshot count, initial energies, series sizes
   void read_checkpoint(CheckpointReader& r);
@@ -59,6 +62,7 @@ class RockOutputs {
   const RockCaseConfig& c_;
   fdem::RockSolver& solver_;
   const std::vector<std::vector<int>>& velocity_nodes_;
+  const ibm::CrackGas* crack_ = nullptr;
   std::filesystem::path dir_;
   PvdSeries rock_pvd_, joints_pvd_;
   CsvSeries series_;

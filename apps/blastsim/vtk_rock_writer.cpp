@@ -97,7 +97,7 @@ void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& s, const 
   write_grid(path, grid);
 }
 
-void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s) {
+void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s, const JointGasFields& gas) {
   const vtkIdType joints = static_cast<vtkIdType>(s.joint_nodes.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -120,13 +120,22 @@ void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s) {
   grid->SetPoints(points);
   grid->GetCellData()->AddArray(damage);
   grid->GetCellData()->AddArray(broken);
+  auto add = [&](const char* name, const std::vector<double>& v) {
+    if (v.size() != static_cast<std::size_t>(joints)) return;
+    auto a = array(name, 1, joints);
+    for (vtkIdType j = 0; j < joints; ++j) a->SetValue(j, v[j]);
+    grid->GetCellData()->AddArray(a);
+  };
+  add("aperture", gas.aperture);
+  add("gas_pressure", gas.gas_pressure);
+  add("gas_mass", gas.gas_mass);
   write_grid(path, grid);
 }
 #else
 void write_rock_vtu(const std::string& path, const fdem::RockSnapshot&, const RockCellFields&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
-void write_joints_vtu(const std::string& path, const fdem::RockSnapshot&) {
+void write_joints_vtu(const std::string& path, const fdem::RockSnapshot&, const JointGasFields&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
 #endif

@@ -51,6 +51,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   triangles_ = topo.triangle_count();
   joints_ = static_cast<int>(topo.joints.size());
   boundary_edges_ = topo.boundary_edges;
+  node_vertex_ = topo.node_vertex;
   const int nodes = 3 * triangles_;
   const double E = material_.youngs_modulus, rho = material_.density;
   const double cp = material_.p_wave_speed();
@@ -456,7 +457,8 @@ std::vector<ProbeSample> RockSolver::probe_samples() const {
 RockView RockSolver::view() {
   detail::RockArrays& a = *a_;
   return {device_ptr(a.nodes.x),      device_ptr(a.nodes.y),        device_ptr(a.nodes.vx), device_ptr(a.nodes.vy),
-          device_ptr(a.edges.exposed), device_ptr(a.edges.pressure), triangles_};
+          device_ptr(a.edges.exposed), device_ptr(a.edges.pressure), triangles_,
+          device_ptr(a.edge_params.joint), device_ptr(a.joint_params.nodes), device_ptr(a.joints.broken), joints_};
 }
 
 std::vector<double> RockSolver::edge_pressures() const { return to_host(a_->edges.pressure); }

@@ -18,7 +18,8 @@ CoupledBudget coupled_budget(const cip::GasSolver& gas, const fdem::RockSolver& 
   b.gas_energy_out = gas.boundary_outflow().energy;
   b.other_external_work = b.rock.external_work - b.rock.pressure_work;
   const fdem::RockEnergies& e = b.rock;
-  const double now = b.gas.total_energy() + b.gas_energy_out + e.kinetic + e.strain + e.joint_work + e.contact_work +
+  const double crack = b.coupling.crack_gas ? b.coupling.crack.energy : 0.0;  // the gas in the cracks
+  const double now = b.gas.total_energy() + crack + b.gas_energy_out + e.kinetic + e.strain + e.joint_work + e.contact_work +
                      e.damping_dissipated;
   b.immersed_face_work = gas.immersed_face_work();
   b.positivity_energy = gas.positivity_energy();

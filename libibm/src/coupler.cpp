@@ -5,8 +5,11 @@
 #include "blastsim/ibm/coupling_step_kernels.hpp"
 #include "blastsim/core/backend.hpp"
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/error.hpp"
 
 #include <thrust/fill.h>
+#include <thrust/sequence.h>
+#include <thrust/sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +26,12 @@ struct CouplerArrays {
   DeviceVector<double> rho_next, e_next;           // padded shape: density and specific energy after the move
   DeviceVector<double> alpha_next, m1_next;        // padded shape: products fields after the move (two materials)
   DeviceVector<double> ledger;  // 4 per cell: covered, uncovered, mass created [kg/m], energy created [J/m]
+  // crack gas: per junction (mesh vertex) its place on the mesh outline and its mouth cell; per segment
+  // (joint) the gas it handed to the grid in this step and that cell; the sort of all deposits by cell
+  DeviceVector<std::uint8_t> outline;
+  DeviceVector<int> junction_cell, handover_cell, keys, order;
+  DeviceVector<ChannelConserved> handover;
+  DeviceVector<double> load_factor;  // per segment: crack_width()'s dw_dopening
 };
 }  // namespace detail
 
@@ -79,13 +88,75 @@ void GasRockCoupler::gas_to_rock() {
   const cip::GasMaterials& mat = gas_.materials();
   for_each_index("ibm.edge_pressure", 3 * static_cast<index_t>(rock.triangles),
                  EdgePressureKernel{rock, g, mat, gas_.material_fields(), ib.cell_active, s.rho.f, s.e.f,
-                                    mat.air.pressure(ambient_.density, ambient_.internal_energy)});
+                                    mat.air.pressure(ambient_.density, ambient_.internal_energy),
+                                    crack_ ? crack_->network().kind : nullptr, crack_ ? crack_->network().prim : nullptr,
+                                    crack_ ? device_ptr(a_->load_factor) : nullptr});
+}
+
+void GasRockCoupler::enable_crack_gas(const CrackGasOptions& options) {
+  const std::vector<int>& vertex = rock_.node_vertex();
+  if (vertex.size() != static_cast<std::size_t>(rock_.node_count()))
+    throw InputError("crack gas: the rock was built without its mesh vertices (FdemTopology::node_vertex)");
+  const int junctions = vertex.empty() ? 0 : *std::max_element(vertex.begin(), vertex.end()) + 1;
+  std::vector<std::array<int, 2>> ends;
+  ends.reserve(rock_.joint_nodes().size());
+  for (const fdem::JointNodes& j : rock_.joint_nodes()) ends.push_back({vertex[j.a0], vertex[j.a1]});
+  crack_ = std::make_unique<CrackGas>(junctions, ends, gas_.materials(), options);
+  std::vector<std::uint8_t> outline(junctions, 0);
+  for (const fdem::BoundaryEdge& b : rock_.boundary_edges()) outline[vertex[b.n0]] = outline[vertex[b.n1]] = 1;
+  copy_from_host(a_->outline, outline);
+  a_->junction_cell.assign(junctions, -1);
+  const auto segments = ends.size();
+  a_->handover_cell.assign(segments, -1);
+  a_->handover.assign(segments, ChannelConserved{0, 0, 0, 0, 0});
+  a_->load_factor.assign(segments, 1.0);
+  a_->keys.assign(junctions + segments, 0);
+  a_->order.assign(junctions + segments, 0);
+}
+
+void GasRockCoupler::crack_geometry() {
+  const CrackGas::Boundary b = crack_->boundary();
+  for_each_index("ibm.crack.geometry", crack_->segments(),
+                 CrackGeometryKernel{rock_.view(), gas_.materials(), gas_.grid(), gas_.immersed_boundary().cell_active,
+                                     crack_->network(), b.length, b.aperture, device_ptr(a_->handover),
+                                     device_ptr(a_->handover_cell), device_ptr(a_->load_factor),
+                                     crack_->options().residual_aperture});
+}
+
+void GasRockCoupler::crack_mouths() {
+  const cip::GasStateView s = gas_.state();
+  const CrackGas::Boundary b = crack_->boundary();
+  for_each_index("ibm.crack.mouths", crack_->junctions(),
+                 CrackMouthKernel{rock_.view(), gas_.materials(), gas_.grid(), gas_.immersed_boundary().cell_active,
+                                  s.rho.f, s.e.f, gas_.material_fields(), crack_->graph(), crack_->network(),
+                                  device_ptr(a_->outline), b.mouth, b.reservoir, device_ptr(a_->junction_cell)});
+}
+
+void GasRockCoupler::apply_crack_deposits() {
+  const int nj = crack_->junctions(), ns = crack_->segments(), records = nj + ns;
+  int* keys = device_ptr(a_->keys);
+  const int* jc = device_ptr(a_->junction_cell);
+  const int* hc = device_ptr(a_->handover_cell);
+  for_each_index("ibm.crack.keys", records, [=] BLAST_HD(index_t k) {
+    const int c = k < nj ? jc[k] : hc[k - nj];
+    keys[k] = c < 0 ? 0x7fffffff : c;
+  });
+  thrust::sequence(thrust::device, a_->order.begin(), a_->order.end());
+  thrust::stable_sort_by_key(thrust::device, a_->keys.begin(), a_->keys.end(), a_->order.begin());
+  const cip::GasGrid g = gas_.grid();
+  for_each_index("ibm.crack.deposit", records,
+                 CrackDepositKernel{keys, device_ptr(a_->order), crack_->network().deposit, device_ptr(a_->handover), nj,
+                                    records, g.nx, g.cell_area(), gas_.state(), gas_.materials().two,
+                                    gas_.material_fields()});
+  crack_->clear_deposits();
 }
 
 void GasRockCoupler::step(double dt, int rock_substeps) {
   if (rock_substeps < 1) throw std::invalid_argument("GasRockCoupler::step: rock_substeps must be at least 1");
   rock_to_gas();
+  if (crack_) crack_geometry();
   gas_.step(dt);
+  if (crack_) crack_mouths(), crack_->advance(dt), apply_crack_deposits();
   gas_to_rock();
   const double rock_dt = dt / rock_substeps;
   for (int k = 0; k < rock_substeps; ++k) rock_.step(rock_dt);
@@ -109,6 +180,7 @@ CouplingDiagnostics GasRockCoupler::diagnostics() const {
   d.transitions.uncovered = std::lround(total(1));
   d.transitions.mass_created = total(2);
   d.transitions.energy_created = total(3);
+  if (crack_) d.crack_gas = true, d.crack = crack_->totals(mat_ambient_pressure());
   return d;
 }
 
@@ -121,9 +193,36 @@ long GasRockCoupler::inactive_cells() const {
   }));
 }
 
+double GasRockCoupler::crack_mouth_pressure(std::array<double, 2> center, double radius) const {
+  if (!crack_) return 0.0;
+  const CrackGraphView g = crack_->graph();
+  const CrackNetworkView n = crack_->network();
+  const fdem::RockView rock = rock_.view();
+  const std::uint8_t* outline = device_ptr(a_->outline);
+  const double cx = center[0], cy = center[1], r2 = radius * radius;
+  return reduce_max("ibm.crack.mouth_pressure", g.segments, 0.0, [=] BLAST_HD(index_t si) {
+    const int s = static_cast<int>(si);
+    if (n.kind[s] != kSegmentGas) return 0.0;
+    const fdem::JointNodes jn = rock.joint_nodes[s];
+    double p = 0.0;
+    for (int e = 0; e < 2; ++e) {
+      if (!outline[g.segment_junction[2 * s + e]]) continue;
+      const int node = e == 0 ? jn.a0 : jn.a1;
+      const double dx = rock.x[node] - cx, dy = rock.y[node] - cy;
+      if (dx * dx + dy * dy > r2) p = n.prim[s].p;
+    }
+    return p;
+  });
+}
+
+double GasRockCoupler::mat_ambient_pressure() const {
+  return gas_.materials().air.pressure(ambient_.density, ambient_.internal_energy);
+}
+
 void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
   w.value("ibm.masks_set", static_cast<int>(masks_set_));
   w.array("ibm.ledger", a_->ledger);
+  if (crack_) crack_->write_checkpoint(w);
 }
 
 void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
@@ -131,6 +230,7 @@ void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
   if (masks != 0 && masks != 1) r.fail("ibm.masks_set", "not 0 or 1");
   masks_set_ = masks == 1;
   r.array("ibm.ledger", a_->ledger, a_->ledger.size());
+  if (crack_) crack_->read_checkpoint(r);
 }
 
 }  // namespace blastsim::ibm

@@ -122,6 +122,10 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(read({"probe.rock_point.1.name=\"r010\""}), Catch::Contains("probe.rock_point.1.name"));
   CHECK_THROWS_WITH(read({"analysis.damage_ring_width=-0.1"}), Catch::Contains("analysis.damage_ring_width"));
   CHECK_THROWS_WITH(read({"analysis.crushed_fraction=0"}), Catch::Contains("analysis.crushed_fraction"));
+  CHECK_THROWS_WITH(read({"crack_gas.residual_aperture=-1e-5"}), Catch::Contains("crack_gas.residual_aperture"));
+  CHECK_THROWS_WITH(read({"crack_gas.courant=1.5"}), Catch::Contains("crack_gas.courant"));
+  CHECK_THROWS_WITH(read({"crack_gas.friction_factor=-1"}), Catch::Contains("crack_gas.friction_factor"));
+  CHECK_THROWS_WITH(read({"crack_gas.aperture=1e-5"}), Catch::Contains("crack_gas.aperture"));  // unknown key
   // With one dt for both solvers, a fixed dt above the rock's stable step is refused at the start, naming
   // the stable value.
   std::ostringstream log;
@@ -147,39 +151,47 @@ std::string file_bytes(const fs::path& p) {
 
 TEST_CASE("A coupled run killed and restarted from its checkpoint ends byte for byte like the uninterrupted run",
           "[app][coupled][restart]") {
-  const fs::path a = fresh_dir("restart_a"), b = fresh_dir("restart_b");
-  auto config = [&](const fs::path& out, std::vector<std::string> extra) {
-    std::vector<std::string> o = small_case(out);
-    o.push_back("time.end=4e-5");
-    o.push_back("output.interval=2e-5");  // snapshots, and checkpoints, at 0, 20 and 40 us
-    o.insert(o.end(), extra.begin(), extra.end());
-    return app::read_coupled_case(app::load_input(example, o));
-  };
-  std::ostringstream log;
-  app::run_coupled_case(config(a, {}), log);
-  const long total_steps = std::lround(last_row(a / "coupling_series.csv").at("step"));
-  // The "killed" run stops 3 steps before the end, well after the 20 us checkpoint: it has written rows and
-  // files past the checkpoint that the restart must drop.
-  app::run_coupled_case(config(b, {"time.max_steps=" + std::to_string(total_steps - 3)}), log);
-  REQUIRE(last_row(b / "coupling_series.csv").at("time_s") < 4e-5);
-  app::RunOptions restart;
-  restart.restart = true;
-  app::run_coupled_case(config(b, {}), log, restart);
-  INFO(log.str());
-  std::vector<std::string> files{"coupling_series.csv", "rock_series.csv", "gas_totals.csv", "point_hole.csv", "checkpoint.bin"};
-  if (fs::exists(a / "gas_000002.vti"))
-    files.insert(files.end(), {"gas.pvd", "rock.pvd", "joints.pvd", "gas_000002.vti", "rock_000002.vtu", "joints_000002.vtu"});
-  for (const std::string& f : files) {
-    INFO(f);
-    const std::string fa = file_bytes(a / f), fb = file_bytes(b / f);
-    CHECK(fa.size() > 0);
-    const bool identical = fa == fb;
-    CHECK(identical);
+  for (const bool crack_gas : {false, true}) {  // without and with gas in the cracks (docs/coupling.md)
+    const std::string tag = crack_gas ? "_crack" : "";
+    const fs::path a = fresh_dir("restart_a" + tag), b = fresh_dir("restart_b" + tag);
+    auto config = [&](const fs::path& out, std::vector<std::string> extra) {
+      std::vector<std::string> o = small_case(out);
+      o.push_back("time.end=4e-5");
+      o.push_back("output.interval=2e-5");  // snapshots, and checkpoints, at 0, 20 and 40 us
+      if (crack_gas) o.push_back("crack_gas.enabled=true");
+      o.insert(o.end(), extra.begin(), extra.end());
+      return app::read_coupled_case(app::load_input(example, o));
+    };
+    std::ostringstream log;
+    app::run_coupled_case(config(a, {}), log);
+    const long total_steps = std::lround(last_row(a / "coupling_series.csv").at("step"));
+    // The "killed" run stops 3 steps before the end, well after the 20 us checkpoint: it has written rows and
+    // files past the checkpoint that the restart must drop.
+    app::run_coupled_case(config(b, {"time.max_steps=" + std::to_string(total_steps - 3)}), log);
+    REQUIRE(last_row(b / "coupling_series.csv").at("time_s") < 4e-5);
+    app::RunOptions restart;
+    restart.restart = true;
+    app::run_coupled_case(config(b, {}), log, restart);
+    INFO(log.str());
+    std::vector<std::string> files{"coupling_series.csv", "rock_series.csv", "gas_totals.csv", "point_hole.csv", "checkpoint.bin"};
+    if (fs::exists(a / "gas_000002.vti"))
+      files.insert(files.end(), {"gas.pvd", "rock.pvd", "joints.pvd", "gas_000002.vti", "rock_000002.vtu", "joints_000002.vtu"});
+    for (const std::string& f : files) {
+      INFO(f);
+      const std::string fa = file_bytes(a / f), fb = file_bytes(b / f);
+      CHECK(fa.size() > 0);
+      const bool identical = fa == fb;
+      CHECK(identical);
+    }
+    const double crack_mass = last_row(a / "coupling_series.csv").at("crack_gas_mass_kg_per_m");
+    std::printf("restart%s: %ld steps; killed at step %ld, restarted from the 20 us checkpoint; %zu files identical; "
+                "crack gas %.3e kg/m\n", crack_gas ? " with crack gas" : "", total_steps, total_steps - 3, files.size(),
+                crack_mass);
+    if (crack_gas) CHECK(crack_mass > 0);  // the cracks held gas across the checkpoint
+    else CHECK(crack_mass == 0);
+    // A checkpoint of another case is refused, naming the difference.
+    CHECK_THROWS_WITH(app::run_coupled_case(config(b, {"gas.courant=0.2"}), log, restart), Catch::Contains("gas.courant"));
   }
-  std::printf("restart: %ld steps; killed at step %ld, restarted from the 20 us checkpoint; %zu files identical\n",
-              total_steps, total_steps - 3, files.size());
-  // A checkpoint of another case is refused, naming the difference.
-  CHECK_THROWS_WITH(app::run_coupled_case(config(b, {"gas.courant=0.2"}), log, restart), Catch::Contains("gas.courant"));
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include "blastsim/ibm/coupler.hpp"
 #include "catch.hpp"
 #include "exact_riemann.hpp"
+#include "hole_in_rock.hpp"
 
 #include <cmath>
 
@@ -244,48 +245,9 @@ TEST_CASE("I3: gas sealed in a hole of intact rock keeps its mass while the rock
 #endif
 
 #if defined(BLASTSIM_TEST_HAVE_GMSH)
-namespace {
-const cip::GasPoint table1_gas{163.0, 4.29e5, 0.0, 0.0};  // the paper's Table 1 hole gas: p = 0.4 x 163 x 4.29e5 = 27.97 MPa
-
-//! The paper's rock made strong enough to stay intact (elastic constants of Table 2, strengths x 100).
-fdem::RockMaterial intact_rock() {
-  fdem::RockMaterial m = fdem::RockMaterial::paper_table2();
-  m.tensile_strength *= 100, m.cohesion *= 100, m.fracture_energy_mode1 *= 1e4, m.fracture_energy_mode2 *= 1e4;
-  return m;
-}
-
-//! A disc of rock (radius R, central hole a) in air on an N x N grid over [-w, w]^2; the hole holds the
-//! Table 1 gas in every cell centred within 1.5 cells of the hole radius (cut cells included).
-struct HoleInRock {
-  cip::GasSolver gas;
-  fdem::RockSolver rock;
-  ibm::GasRockCoupler coupler;
-  HoleInRock(int N, double w, double R, double a, double h, const fdem::RockMaterial& m,
-             const std::vector<fdem::Segment>& cracks = {})
-      : gas(cip::GasGrid::from_box(N, N, -w, w, -w, w), eos),
-        rock(fdem::build_topology(fdem::gmsh_disc_with_hole(0, 0, R, a, h, cracks).mesh), m, no_contact()),
-        coupler(gas, rock, air) {
-    const double r_fill = a + 1.5 * 2 * w / N;
-    gas.initialise([&](double x, double y) { return x * x + y * y < r_fill * r_fill ? table1_gas : air; });
-    coupler.rock_to_gas();
-  }
-  static fdem::RockOptions no_contact() {
-    fdem::RockOptions o;
-    o.contact = false;
-    return o;
-  }
-  //! Steps to t: one dt for both solvers, or (subcycle) gas steps at the Courant limit, each filled with as
-  //! many rock steps as keep the rock within its stable step.
-  void run_to(double t, bool subcycle = false) {
-    while (gas.time() < t - 1e-12) {
-      const double dt = std::fmin(subcycle ? gas.courant_dt(0.1) : coupler.stable_dt(0.1), t - gas.time());
-      if (!(dt > 0)) FAIL("no stable step at t = " << gas.time() << ": " << gas.describe_invalid_cell());
-      const int substeps = subcycle ? ibm::rock_substeps(dt, 0.9 * rock.stable_dt()) : 1;
-      coupler.step(dt, substeps);
-    }
-  }
-};
-}  // namespace
+using test::HoleInRock;
+using test::intact_rock;
+using test::table1_gas;
 
 TEST_CASE("Coupled energy: gas energy lost by a pressurised hole equals the work done on intact rock", "[ibm][energy]") {
   // Table 1 gas in a 20 mm hole of a 100 mm disc of elastic rock, in air. Budget of the whole gas: what it

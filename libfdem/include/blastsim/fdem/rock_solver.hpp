@@ -40,6 +40,10 @@ struct RockView {
   const std::uint8_t* edge_exposed;  //!< per edge slot: kEdgeInside, kEdgeBoundary or kEdgeCrackFace
   double* edge_pressure;             //!< per edge slot [Pa], read by the next step
   int triangles;
+  const int* edge_joint;             //!< per edge slot: the joint across it, or -1
+  const JointNodes* joint_nodes;     //!< per joint: its four nodes
+  const std::uint8_t* joint_broken;  //!< per joint: 1 once broken
+  int joints;
 };
 
 class RockSolver {
@@ -107,6 +111,10 @@ class RockSolver {
   int joint_count() const { return joints_; }
   const std::vector<BoundaryEdge>& boundary_edges() const { return boundary_edges_; }
   const RockMaterial& material() const { return material_; }
+  //! Mesh vertex of each node (3 per triangle), from the topology the solver was built from.
+  const std::vector<int>& node_vertex() const { return node_vertex_; }
+  //! The four nodes of each joint (host copy of the params).
+  const std::vector<JointNodes>& joint_nodes() const { return joint_nodes_host_; }
   // --- analysis on the device (rock_analysis.hpp and fragments.hpp use the results) ---
   //! Fragment label of every triangle: triangles joined through joints that have not broken share a label,
   //! the smallest triangle index of their fragment (label propagation with pointer jumping on the device;
@@ -137,6 +145,7 @@ class RockSolver {
   int triangles_ = 0, joints_ = 0;
   std::vector<BoundaryEdge> boundary_edges_;
   std::vector<JointNodes> joint_nodes_host_;
+  std::vector<int> node_vertex_;
   double stable_dt_ = 0, time_ = 0, pressure_scale_ = 1.0, dt_prev_ = 0;
   long steps_ = 0, rebuilds_ = 0;
   std::unique_ptr<detail::RockArrays> a_;  // every device array (rock_storage.hpp)

@@ -9,6 +9,7 @@
 
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/ibm/crack_gas.hpp"
 
 #include <algorithm>
 #include <array>
@@ -32,6 +33,8 @@ struct CouplingDiagnostics {
   std::array<double, 2> gas_force_on_rock{};  //!< [N/m] sum over exposed edges of p L n (inward), last pressures
   double gas_work_on_rock = 0;                //!< [J/m] cumulative work of the edge pressures on the rock
   CellTransitions transitions;
+  bool crack_gas = false;  //!< the cracks carry their own gas (enable_crack_gas())
+  CrackGasTotals crack;    //!< the gas in the cracks (crack_gas only)
 };
 
 //! Rock steps that fill a gas step of dt [s] without exceeding the rock step rock_dt [s] (rock subcycling;
@@ -81,8 +84,23 @@ class GasRockCoupler {
 
   //! One coupled step of dt [s]: rock_to_gas(), gas step, gas_to_rock(), then `rock_substeps` rock steps of
   //! dt / rock_substeps under those edge pressures (1: the paper's single dt; more: the rock subcycles a gas
-  //! step longer than its stable step, docs/coupling.md).
+  //! step longer than its stable step, docs/coupling.md). With crack gas: after rock_to_gas() the cracks'
+  //! geometry, after the gas step their mouths (from the cells' new gas), their own steps (as many as their
+  //! Courant limit needs) and what they gave to or took from the grid cells.
   void step(double dt, int rock_substeps = 1);
+
+  //! Gives every broken joint its own gas (docs/coupling.md "Gas in the cracks"): a 1-D channel network on the
+  //! broken joints, joined at the mesh vertices, opening into the grid gas where a junction lies in an active
+  //! cell or on the mesh outline beside one; each crack face is loaded by its channel's pressure. Call before
+  //! the first step (and before read_checkpoint()). Throws InputError on bad options, or if the rock was
+  //! built without mesh vertices (FdemTopology::node_vertex).
+  void enable_crack_gas(const CrackGasOptions& options);
+  const CrackGas* crack_gas() const { return crack_.get(); }
+  //! Largest gas pressure [Pa] of the cracks at their mouths on the mesh outline farther than `radius` [m]
+  //! from `center` (e.g. on the outer free face of a disc around a hole); 0 without crack gas (a device
+  //! reduction).
+  double crack_mouth_pressure(std::array<double, 2> center, double radius) const;
+  CrackGas* crack_gas() { return crack_.get(); }
 
   //! Largest dt [s] that both solvers accept: min(gas Courant limit at `courant`, rock stable step).
   double stable_dt(double courant) const;
@@ -104,6 +122,11 @@ class GasRockCoupler {
   fdem::RockSolver& rock_;
   cip::GasPoint ambient_;
   bool masks_set_ = false;
+  std::unique_ptr<CrackGas> crack_;
+  void crack_geometry();
+  void crack_mouths();
+  void apply_crack_deposits();
+  double mat_ambient_pressure() const;  // the ambient state's pressure [Pa]
   // Padded-shape work arrays (owners of the face points, the mask being built, the moved gas) and the
   // transition ledger, behind the class (coupler.cpp).
   std::unique_ptr<detail::CouplerArrays> a_;

@@ -14,6 +14,7 @@
 #include "blastsim/fdem/rock_fields.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 #include "blastsim/ibm/coupling_kernels.hpp"
+#include "blastsim/ibm/crack_gas_kernels.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -205,7 +206,8 @@ struct ApplyTransitionKernel {
   }
 };
 
-//! Pressure on each exposed rock edge (docs/coupling.md "Gas -> rock"). The cell the edge faces (the one
+//! Pressure on each exposed rock edge (docs/coupling.md "Gas -> rock"). A face of a crack that holds its own
+//! gas (crack gas on, docs/coupling.md "Gas in the cracks") takes that gas's pressure. Otherwise the cell the edge faces (the one
 //! holding the point a hundredth of a cell off the midpoint along the outward normal) gives its pressure when
 //! it is active. Otherwise a boundary edge takes the active cell nearest to its midpoint within 2 cells (the
 //! paper's rule; ties go to the first in scan order) and a crack face the ambient pressure: a crack narrower
@@ -219,10 +221,20 @@ struct EdgePressureKernel {
   Field2D<const std::uint8_t> active;
   Field2D<const double> rho, e;
   double ambient_pressure;
+  const std::uint8_t* crack_kind;        // per joint, or null without crack gas
+  const ChannelPrimitive* crack_state;   // per joint
+  const double* crack_load_factor;       // per joint: crack_width()'s dw_dopening
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
     const std::uint8_t kind = rock.edge_exposed[s];
     if (kind == fdem::kEdgeInside) return;
+    if (kind == fdem::kEdgeCrackFace && crack_kind) {  // a crack with its own gas: that gas's pressure (crack_width())
+      const int j = rock.edge_joint[s];
+      if (j >= 0 && crack_kind[j] == kSegmentGas) {
+        rock.edge_pressure[s] = crack_state[j].p * crack_load_factor[j];
+        return;
+      }
+    }
     const int a = fdem::slot_first_node(s), b = fdem::slot_second_node(s);
     const double mx = 0.5 * (rock.x[a] + rock.x[b]), my = 0.5 * (rock.y[a] + rock.y[b]);
     const fdem::Vec2 n = fdem::edge_outward_normal({rock.x[a], rock.y[a]}, {rock.x[b], rock.y[b]});
@@ -258,4 +270,183 @@ struct EdgeForceOf {
     return {-p * n.x, -p * n.y};
   }
 };
+
+// ---- the gas in the cracks (docs/coupling.md "Gas in the cracks") -----------------------------------------
+
+//! Cell (i, j) holding point (x, y), or false outside the grid.
+BLAST_HD inline bool cell_of(const cip::GasGrid& g, double x, double y, int& i, int& j) {
+  i = static_cast<int>(floor((x - g.x_min) / g.dx));
+  j = static_cast<int>(floor((y - g.y_min) / g.dy));
+  return i >= 0 && i < g.nx && j >= 0 && j < g.ny;
+}
+
+//! The cell an exposed edge from p0 to p1 faces: the one holding the point a hundredth of a cell off its
+//! midpoint along its outward normal (rule 1 of docs/coupling.md "Gas -> rock"); false outside the grid.
+BLAST_HD inline bool facing_cell(const cip::GasGrid& g, const fdem::Vec2& p0, const fdem::Vec2& p1, int& i, int& j) {
+  const fdem::Vec2 n = fdem::edge_outward_normal(p0, p1);
+  const double off = 0.01 * fmin(g.dx, g.dy) / sqrt(n.x * n.x + n.y * n.y);
+  return cell_of(g, 0.5 * (p0.x + p1.x) + off * n.x, 0.5 * (p0.y + p1.y) + off * n.y, i, j);
+}
+
+//! Aperture of a crack from the mean normal opening o of its faces [m] and the residual aperture w_r [m]:
+//! w = w_r + o when open; closed (o < 0: the faces pressed together), w = w_r exp(o / w_r), which joins
+//! smoothly (same value and slope at o = 0) and stays positive. dw_dopening scales the gas's pressure on the
+//! faces, so that their work p L dw_dopening do is the gas's p dV exactly: a closed crack's gas loads its
+//! faces less the more they are pressed together.
+struct CrackWidth {
+  double w, dw_dopening;
+};
+BLAST_HD inline CrackWidth crack_width(double opening, double residual) {
+  if (opening >= 0) return {residual + opening, 1.0};
+  const double f = exp(opening / residual);
+  return {residual * f, f};
+}
+
+//! Every joint's channel from the rock (one thread per joint = segment): length L (mean of its two faces),
+//! aperture w from the mean normal opening of its two ends (crack_width()), volume L w. A joint that just broke
+//! becomes a gas segment holding nothing (a vacuum: its gas can only come from its neighbours, so the total is
+//! kept exactly); a gas segment whose volume changes does the work p dV on its walls (E -= p dV: the rock's
+//! edge pressures do the same work on the rock). Hand-over: when a face of the crack meets the grid gas (the
+//! cell it faces is active, so the grid's gas loads it and is pushed by it), the segment gives its gas to that
+//! cell (handover[], applied with the mouths' deposits) and the grid carries it from then on; once neither
+//! face meets an active cell, the segment takes its own gas again, starting empty. So the two gases never
+//! share a face, and every face's work is paid by the gas that loads it.
+struct CrackGeometryKernel {
+  fdem::RockView rock;
+  cip::GasMaterials mat;
+  cip::GasGrid g;
+  Field2D<const std::uint8_t> active;
+  CrackNetworkView n;
+  double* length;
+  double* aperture;
+  ChannelConserved* handover;
+  int* handover_cell;
+  double* load_factor;
+  double residual_aperture;
+  BLAST_HD void operator()(index_t ji) const {
+    const int s = static_cast<int>(ji);
+    handover_cell[s] = -1;
+    if (!rock.joint_broken[s]) {
+      n.kind[s] = kSegmentNone;
+      return;
+    }
+    const fdem::JointNodes jn = rock.joint_nodes[s];
+    const fdem::Vec2 a0{rock.x[jn.a0], rock.y[jn.a0]}, a1{rock.x[jn.a1], rock.y[jn.a1]};
+    const fdem::Vec2 b0{rock.x[jn.b0], rock.y[jn.b0]}, b1{rock.x[jn.b1], rock.y[jn.b1]};
+    const double la = sqrt((a1.x - a0.x) * (a1.x - a0.x) + (a1.y - a0.y) * (a1.y - a0.y));
+    const double lb = sqrt((b1.x - b0.x) * (b1.x - b0.x) + (b1.y - b0.y) * (b1.y - b0.y));
+    const fdem::Vec2 nrm = fdem::edge_outward_normal(a0, a1);  // from face A towards face B, length la
+    const double open0 = ((b1.x - a0.x) * nrm.x + (b1.y - a0.y) * nrm.y) / la;
+    const double open1 = ((b0.x - a1.x) * nrm.x + (b0.y - a1.y) * nrm.y) / la;
+    const CrackWidth cw = crack_width(0.5 * (open0 + open1), residual_aperture);
+    const double L = 0.5 * (la + lb), w = cw.w, V = L * w;
+    length[s] = L, aperture[s] = w, load_factor[s] = cw.dw_dopening;
+    int ci = -1, cj = -1, fi = 0, fj = 0;
+    if (facing_cell(g, a0, a1, fi, fj) && active(fi, fj)) ci = fi, cj = fj;
+    else if (facing_cell(g, b0, b1, fi, fj) && active(fi, fj)) ci = fi, cj = fj;
+    const bool meets_grid = ci >= 0;
+    const std::uint8_t kind = n.kind[s];
+    if (kind == kSegmentNone || (kind == kSegmentGrid && !meets_grid)) {
+      n.kind[s] = meets_grid ? kSegmentGrid : kSegmentGas, n.cons[s] = {0, 0, 0, 0, 0}, n.volume[s] = V;
+      return;
+    }
+    if (kind != kSegmentGas) return;
+    ChannelConserved c = n.cons[s];
+    const double V_old = n.volume[s];
+    const ChannelPrimitive P = segment_state(mat, c, V_old);
+    if (!is_vacuum(P)) c.E -= P.p * (V - V_old);
+    n.volume[s] = V;
+    if (meets_grid) {
+      handover[s] = c, handover_cell[s] = cj * g.nx + ci;
+      n.kind[s] = kSegmentGrid, c = {0, 0, 0, 0, 0};
+    }
+    n.cons[s] = c;
+  }
+};
+
+//! Which junctions open into the grid gas, and its state there (one thread per junction). A junction is a
+//! mouth when the cell holding it (the midpoint of its two faces' nodes at the first gas segment's end) is
+//! active, or, for a vertex on the mesh outline (the blasthole wall, the free face), when an active cell's
+//! centre lies in the 3 x 3 block around it (the nearest). The mouth's reservoir is that cell's gas at rest.
+struct CrackMouthKernel {
+  fdem::RockView rock;
+  cip::GasMaterials mat;
+  cip::GasGrid g;
+  Field2D<const std::uint8_t> active;
+  Field2D<const double> rho, e;
+  cip::MaterialReadView materials;
+  CrackGraphView graph;
+  CrackNetworkView n;
+  const std::uint8_t* outline;  // per junction
+  std::uint8_t* mouth;
+  ChannelPrimitive* reservoir;
+  int* junction_cell;
+  BLAST_HD void operator()(index_t ji) const {
+    const int J = static_cast<int>(ji);
+    mouth[J] = 0, junction_cell[J] = -1;
+    int end = -1;
+    for (int k = graph.junction_offset[J]; k < graph.junction_offset[J + 1] && end < 0; ++k)
+      if (n.kind[graph.junction_entry[k] / 2] == kSegmentGas) end = graph.junction_entry[k];
+    if (end < 0) return;
+    const fdem::JointNodes jn = rock.joint_nodes[end / 2];
+    const int na = end % 2 == 0 ? jn.a0 : jn.a1, nb = end % 2 == 0 ? jn.b1 : jn.b0;
+    const double x = 0.5 * (rock.x[na] + rock.x[nb]), y = 0.5 * (rock.y[na] + rock.y[nb]);
+    int ci = 0, cj = 0;
+    const bool inside = cell_of(g, x, y, ci, cj);
+    int fi = -1, fj = -1;
+    if (inside && active(ci, cj)) {
+      fi = ci, fj = cj;
+    } else if (outline[J]) {
+      double best = 1e300;
+      for (int j = imax(0, cj - 1); j <= imin(g.ny - 1, cj + 1); ++j)
+        for (int i = imax(0, ci - 1); i <= imin(g.nx - 1, ci + 1); ++i) {
+          if (!active(i, j)) continue;
+          const double dx = g.cell_x(i) - x, dy = g.cell_y(j) - y, d = dx * dx + dy * dy;
+          if (d < best) best = d, fi = i, fj = j;
+        }
+    }
+    if (fi < 0) return;
+    const double r = rho(fi, fj);
+    const double alpha = mat.two ? materials.alpha(fi, fj) : 0.0, Y = mat.two ? materials.m1(fi, fj) / r : 0.0;
+    mouth[J] = 1, junction_cell[J] = fj * g.nx + fi;
+    reservoir[J] = channel_state(mat, r, 0.0, e(fi, fj), Y, alpha);
+  }
+};
+
+//! Adds the cracks' deposits to their cells (one thread per run of equal cell keys in the sorted records: the
+//! first of the run sums them in sorted order, so the bytes do not depend on the thread schedule). Records
+//! 0 .. junctions - 1 are the mouths' deposits, the rest the segments' hand-overs. The deposited energy is
+//! internal energy of the cell (the cell's faces keep their velocities).
+struct CrackDepositKernel {
+  const int* key;    // sorted cell keys (INT_MAX: none)
+  const int* order;  // record of each sorted position
+  const ChannelConserved* deposit;
+  const ChannelConserved* handover;
+  int junctions, records, nx;
+  double cell_area;
+  cip::GasStateView s;
+  bool two;
+  cip::MaterialView materials;
+  BLAST_HD void operator()(index_t ki) const {
+    const int k = static_cast<int>(ki);
+    const int c = key[k];
+    if (c == 0x7fffffff || (k > 0 && key[k - 1] == c)) return;
+    ChannelConserved sum{0, 0, 0, 0, 0};
+    for (int r = k; r < records && key[r] == c; ++r) {
+      const int rec = order[r];
+      const ChannelConserved d = rec < junctions ? deposit[rec] : handover[rec - junctions];
+      sum.m += d.m, sum.E += d.E, sum.m1 += d.m1, sum.am += d.am;
+    }
+    const int i = c % nx, j = c / nx;
+    const double m_old = s.rho.f(i, j) * cell_area, m_new = m_old + sum.m;
+    const double E_new = s.e.f(i, j) * m_old + sum.E;
+    s.rho.f(i, j) = m_new / cell_area;
+    s.e.f(i, j) = E_new / m_new;
+    if (two) {
+      materials.alpha(i, j) = (materials.alpha(i, j) * m_old + sum.am) / m_new;
+      materials.m1(i, j) += sum.m1 / cell_area;
+    }
+  }
+};
+
 }  // namespace blastsim::ibm

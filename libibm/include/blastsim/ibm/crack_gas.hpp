@@ -1,0 +1,118 @@
+//! \file crack_gas.hpp
+//! \brief CrackGas: compressible gas in a network of channels narrower than a grid cell (the broken joints of
+//! the rock), a 1-D finite-volume Euler solver on the crack graph with wall friction and choked mouths
+//! (docs/coupling.md "Gas in the cracks"). Usable alone (tests build a straight channel) or through
+//! GasRockCoupler, which sets its geometry from the rock and its mouths from the grid each step.
+#pragma once
+
+#include "blastsim/cip/eos.hpp"
+#include "blastsim/ibm/crack_gas_kernels.hpp"
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace blastsim {
+class CheckpointWriter;
+class CheckpointReader;
+}  // namespace blastsim
+
+namespace blastsim::ibm {
+
+//! Parameters of the crack gas model (input section [coupling.crack_gas], docs/input.md).
+struct CrackGasOptions {
+  double residual_aperture = 1e-5;  //!< [m] aperture of a closed crack (its gas volume is L x this)
+  double friction_factor = 0.1;     //!< rough-wall Darcy friction factor [-]
+  double viscosity = 5e-5;          //!< gas dynamic viscosity [Pa s] (laminar friction floor)
+  double courant = 0.4;             //!< Courant number of the channel solver's substeps
+  bool second_order = true;         //!< MUSCL-Hancock along straight chains (first order otherwise)
+  //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0,
+  //! viscosity >= 0 and 0 < courant <= 1 (all finite).
+  void validate() const;
+};
+
+//! Sums over the gas segments.
+struct CrackGasTotals {
+  double mass = 0;           //!< [kg/m]
+  double energy = 0;         //!< total energy [J/m]
+  double products_mass = 0;  //!< [kg/m]
+  double volume = 0;         //!< [m2 per m]
+  double max_pressure = 0;   //!< [Pa]
+  long gas_segments = 0;     //!< segments that hold their own gas (kSegmentGas)
+  long wet_segments = 0;     //!< of those, segments above 1.5 times the reference pressure
+};
+
+namespace detail {
+struct CrackArrays;
+}
+
+class CrackGas {
+ public:
+  //! A network of `junctions` junctions and one segment per entry of `segment_ends` (its end 0 and end 1
+  //! junctions). Throws InputError if a junction index is out of range or a junction has more than
+  //! kCrackMaxDegree ends. Every segment starts as kSegmentNone (no crack), every junction closed.
+  CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment_ends, const cip::GasMaterials& materials,
+           const CrackGasOptions& options);
+  ~CrackGas();
+  CrackGas(CrackGas&&) noexcept;
+  CrackGas& operator=(CrackGas&&) noexcept;
+
+  // --- host set-up (standalone use and tests) ---
+  //! Length and aperture [m] of every segment.
+  void set_geometry(const std::vector<double>& length, const std::vector<double>& aperture);
+  //! Every segment's kind and gas (mass, momentum, energy, products) with its volume [m2 per m].
+  void set_gas(const std::vector<std::uint8_t>& kind, const std::vector<ChannelConserved>& gas,
+               const std::vector<double>& volume);
+  //! Opens the listed junctions into reservoirs at rest in the given states (the others are closed).
+  void set_reservoirs(const std::vector<int>& junctions, const std::vector<ChannelPrimitive>& states);
+
+  // --- stepping ---
+  //! Largest channel step [s]: courant / max over gas segments (and mouths) of the signal speed over length
+  //! (a device reduction); infinity when no segment holds gas.
+  double stable_dt() const;
+  //! One step of dt [s] (no check of dt): primitives, MUSCL-Hancock faces, junction fluxes, update.
+  void step(double dt);
+  //! Advances by dt [s] in ceil(dt / stable_dt()) equal substeps; returns their number.
+  int advance(double dt);
+  //! Recomputes the segments' primitive states (pressures for the faces' loads) from their gas.
+  void update_primitives();
+
+  // --- device views (GasRockCoupler's kernels) ---
+  CrackNetworkView network();
+  CrackGraphView graph() const;
+  //! Writable geometry and mouth arrays: length, aperture per segment; mouth flag and reservoir per junction.
+  struct Boundary {
+    double* length;
+    double* aperture;
+    std::uint8_t* mouth;
+    ChannelPrimitive* reservoir;
+  };
+  Boundary boundary();
+
+  // --- results (host copies) ---
+  CrackGasTotals totals(double reference_pressure = 0) const;
+  std::vector<ChannelConserved> gas() const;
+  std::vector<ChannelPrimitive> primitives() const;
+  std::vector<std::uint8_t> kinds() const;
+  std::vector<double> apertures() const;
+  std::vector<double> volumes() const;
+  //! What went into each junction's reservoir since the last clear_deposits() (mass, energy, products).
+  std::vector<ChannelConserved> deposits() const;
+  void clear_deposits();
+
+  void write_checkpoint(CheckpointWriter& w) const;
+  void read_checkpoint(CheckpointReader& r);
+
+  int segments() const { return segments_; }
+  int junctions() const { return junctions_; }
+  const cip::GasMaterials& materials() const { return mat_; }
+  const CrackGasOptions& options() const { return options_; }
+
+ private:
+  int segments_ = 0, junctions_ = 0;
+  cip::GasMaterials mat_;
+  CrackGasOptions options_;
+  std::unique_ptr<detail::CrackArrays> a_;
+};
+
+}  // namespace blastsim::ibm

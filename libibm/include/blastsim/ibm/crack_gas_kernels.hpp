@@ -1,0 +1,413 @@
+//! \file crack_gas_kernels.hpp
+//! \brief Gas in cracks narrower than a grid cell (docs/coupling.md "Gas in the cracks"): the physics of one
+//! channel segment (states, the HLLC flux, the choked nozzle of a crack mouth, wall friction) and the kernels
+//! of the 1-D finite-volume Euler solver on the crack graph. Plain header: no backend dependency; tests call
+//! the functions directly.
+//!
+//! Every broken joint is one finite volume of a quasi-1-D channel: length L [m], aperture w [m] (flow width per
+//! unit thickness), volume V = L w [m2 per m of thickness]. Its two ends meet other segments at mesh vertices
+//! (junctions). Conserved per segment (per unit thickness): mass m [kg/m], axial momentum q = m u [kg/s]
+//! (u along the axis from end 0 to end 1), total energy E [J/m], products mass m1 [kg/m] and the
+//! volume-fraction-weighted mass am = alpha m [kg/m] (two-material runs).
+#pragma once
+
+#include "blastsim/cip/eos.hpp"
+#include "blastsim/core/field2d.hpp"
+#include "blastsim/core/macros.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+namespace blastsim::ibm {
+
+//! Densities below this [kg/m3] are vacuum to the channel solver (a freshly broken joint starts empty).
+inline constexpr double kCrackVacuumDensity = 1e-9;
+//! Most segments that may meet at one junction (the mesh's largest vertex degree is checked against it).
+inline constexpr int kCrackMaxDegree = 16;
+
+//! Segment states: not a crack (intact joint), a crack holding its own gas, or a crack so wide that the grid
+//! carries its gas (docs/coupling.md, "Hand-over").
+enum CrackSegmentKind : std::uint8_t { kSegmentNone = 0, kSegmentGas = 1, kSegmentGrid = 2 };
+
+//! Conserved variables of one segment, per unit thickness.
+struct ChannelConserved {
+  double m;   //!< mass [kg/m]
+  double q;   //!< axial momentum [kg/s]
+  double E;   //!< total energy [J/m]
+  double m1;  //!< products mass [kg/m]
+  double am;  //!< alpha x mass [kg/m]
+};
+
+//! Primitive state at a point of a channel; u along the frame's axis.
+struct ChannelPrimitive {
+  double rho;    //!< [kg/m3]
+  double u;      //!< [m/s]
+  double p;      //!< [Pa]
+  double c;      //!< sound speed [m/s]
+  double Y;      //!< products mass fraction [-]
+  double alpha;  //!< products volume fraction [-]
+  double Edens;  //!< total energy per volume [J/m3]
+};
+
+//! Rates through one channel cross-section of unit flux area, positive from the left state to the right
+//! state: mass [kg/(m2 s)], momentum [Pa], energy [W/m2], products mass and alpha x mass [kg/(m2 s)].
+struct ChannelFlux {
+  double m, q, E, m1, am;
+};
+
+BLAST_HD inline bool is_vacuum(const ChannelPrimitive& s) { return !(s.rho > kCrackVacuumDensity); }
+
+//! Effective Gruneisen coefficient of the mixture, 1 / (alpha / Gamma1 + (1 - alpha) / Gamma2).
+BLAST_HD inline double mixture_gruneisen(const cip::GasMaterials& mat, double alpha) {
+  if (!mat.two) return mat.air.gruneisen();
+  return 1.0 / (alpha / mat.products.gruneisen() + (1.0 - alpha) / mat.air.gruneisen());
+}
+
+//! Internal energy per volume rho e [J/m3] at density rho, pressure p, volume fraction alpha and products mass
+//! fraction Y (the inverse of the mixture's equation of state).
+BLAST_HD inline double channel_internal_energy(const cip::GasMaterials& mat, double rho, double p, double alpha, double Y) {
+  if (!mat.two || !(alpha > cip::GasMaterials::kMinFraction)) return rho * mat.air.internal_energy(rho, p);
+  const double a2 = 1.0 - alpha;
+  const double rho1 = Y * rho / alpha, rho2 = a2 > cip::GasMaterials::kMinFraction ? (1.0 - Y) * rho / a2 : 0.0;
+  return mat.energy_density(p, alpha, rho1, rho2);
+}
+
+//! Primitive state from density, velocity, specific internal energy and the products fractions.
+BLAST_HD inline ChannelPrimitive channel_state(const cip::GasMaterials& mat, double rho, double u, double e, double Y,
+                                               double alpha) {
+  ChannelPrimitive s{rho, u, 0.0, 0.0, Y, alpha, 0.0};
+  if (is_vacuum(s)) return {0.0, 0.0, 0.0, 0.0, Y, alpha, 0.0};
+  s.p = mat.pressure(rho, e, alpha, Y * rho);
+  s.c = mat.sound_speed(rho, e, alpha, Y * rho);
+  s.Edens = rho * e + 0.5 * rho * u * u;
+  return s;
+}
+
+//! Primitive state of a segment from its conserved variables and volume V [m2 per m].
+BLAST_HD inline ChannelPrimitive segment_state(const cip::GasMaterials& mat, const ChannelConserved& c, double V) {
+  if (!(c.m > kCrackVacuumDensity * V)) return {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  const double rho = c.m / V, u = c.q / c.m, e = c.E / c.m - 0.5 * u * u;
+  return channel_state(mat, rho, u, e, c.m1 / c.m, c.am / c.m);
+}
+
+//! The same state seen in a frame whose axis is reversed.
+BLAST_HD inline ChannelPrimitive reversed(ChannelPrimitive s) {
+  s.u = -s.u;
+  return s;
+}
+
+//! Exact physical flux of a state.
+BLAST_HD inline ChannelFlux physical_flux(const ChannelPrimitive& s) {
+  const double mf = s.rho * s.u;
+  return {mf, mf * s.u + s.p, (s.Edens + s.p) * s.u, mf * s.Y, mf * s.alpha};
+}
+
+//! HLLC flux (Toro, Spruce & Speares 1994, Shock Waves 4:25; Toro 2009, "Riemann Solvers and Numerical Methods
+//! for Fluid Dynamics", 3rd ed., sec. 10.4, eqs. 10.37-10.39 with the speed estimates of eq. 10.48) between a
+//! left and a right state, for any equation of state (the star states need only rho, u, p and E). Against a
+//! vacuum it is the HLL flux with the vacuum front speed u + 2 c / Gamma (Toro 2009, sec. 4.6).
+BLAST_HD inline ChannelFlux hllc_flux(const cip::GasMaterials& mat, const ChannelPrimitive& L, const ChannelPrimitive& R) {
+  const bool vl = is_vacuum(L), vr = is_vacuum(R);
+  if (vl && vr) return {0, 0, 0, 0, 0};
+  if (vl || vr) {
+    const ChannelPrimitive& g = vl ? R : L;
+    const double front = 2.0 * g.c / mixture_gruneisen(mat, g.alpha);
+    const double SL = vl ? g.u - front : g.u - g.c, SR = vl ? g.u + g.c : g.u + front;
+    const ChannelFlux F = physical_flux(g);
+    if (vr ? SL >= 0 : SR <= 0) return F;
+    if (vr ? SR <= 0 : SL >= 0) return {0, 0, 0, 0, 0};
+    // HLL with the vacuum side's U = F = 0.
+    const double s = vr ? SR : -SL, k = 1.0 / (SR - SL);
+    const ChannelFlux U = {g.rho, g.rho * g.u, g.Edens, g.rho * g.Y, g.rho * g.alpha};
+    const double w = vr ? -SL * SR : SL * SR;  // the U term's sign: F* = (SR FL - SL FR + SL SR (UR - UL)) / (SR - SL)
+    return {(s * F.m + w * U.m) * k, (s * F.q + w * U.q) * k, (s * F.E + w * U.E) * k, (s * F.m1 + w * U.m1) * k,
+            (s * F.am + w * U.am) * k};
+  }
+  const double SL = fmin(L.u - L.c, R.u - R.c), SR = fmax(L.u + L.c, R.u + R.c);
+  if (SL >= 0) return physical_flux(L);
+  if (SR <= 0) return physical_flux(R);
+  const double dl = L.rho * (SL - L.u), dr = R.rho * (SR - R.u);
+  const double SM = (R.p - L.p + L.u * dl - R.u * dr) / (dl - dr);
+  const ChannelPrimitive& K = SM >= 0 ? L : R;
+  const double S = SM >= 0 ? SL : SR, d = SM >= 0 ? dl : dr;
+  const double f = d / (S - SM);  // rho*_K
+  const ChannelFlux F = physical_flux(K);
+  const double Estar = f * (K.Edens / K.rho + (SM - K.u) * (SM + K.p / d));
+  return {F.m + S * (f - K.rho), F.q + S * (f * SM - K.rho * K.u), F.E + S * (Estar - K.Edens),
+          F.m1 + S * (f * K.Y - K.rho * K.Y), F.am + S * (f * K.alpha - K.rho * K.alpha)};
+}
+
+//! Pressure on a closed channel end [Pa]: the momentum flux of the HLLC solution between the state arriving
+//! at the wall (u towards it) and its mirror image; mass and energy do not cross.
+BLAST_HD inline double wall_pressure(const cip::GasMaterials& mat, const ChannelPrimitive& s) {
+  if (is_vacuum(s)) return 0.0;
+  return hllc_flux(mat, s, reversed(s)).q;
+}
+
+//! Steady isentropic nozzle from a reservoir at rest (density rho0 [kg/m3], pressure p0 [Pa], isentropic
+//! exponent k = rho0 c0^2 / p0) into a back pressure pb [Pa]: mass flux G [kg/(m2 s)], exit pressure and
+//! velocity. The flow chokes (M = 1) when pb < p0 (2 / (k + 1))^(k / (k - 1)): G then stays at its maximum
+//! (e.g. Anderson 2003, "Modern Compressible Flow", 3rd ed., eqs. 5.20-5.21). Exact for an ideal gas; for
+//! JWL products and mixtures k is the local exponent at the reservoir (the expansion through a mouth is
+//! short).
+struct NozzleFlow {
+  double G, p, u;
+};
+BLAST_HD inline NozzleFlow nozzle_flow(double rho0, double p0, double k, double pb) {
+  if (!(rho0 > kCrackVacuumDensity) || !(p0 > pb)) return {0.0, p0, 0.0};
+  const double r_choke = pow(2.0 / (k + 1.0), k / (k - 1.0));
+  const double r = fmax(pb / p0, r_choke);
+  const double rho = rho0 * pow(r, 1.0 / k);
+  const double u = sqrt(fmax(0.0, 2.0 * k / (k - 1.0) * p0 / rho0 * (1.0 - pow(r, (k - 1.0) / k))));
+  return {rho * u, r * p0, u};
+}
+
+//! Friction rate k [1/s] of a channel of aperture w [m]: dq/dt = -k q, from the Darcy-Weisbach wall shear
+//! tau = f rho u |u| / 8 on both walls (hydraulic diameter 2 w): k = f |u| / (4 w), with f the larger of the
+//! rough-wall factor f_rough and the laminar 96 / Re (Re = rho |u| 2 w / mu; parallel plates), so a slow flow
+//! follows the cubic law (mean velocity w^2 / (12 mu) times the pressure gradient).
+BLAST_HD inline double friction_rate(double rho, double u, double w, double f_rough, double mu) {
+  const double turbulent = f_rough * fabs(u) / (4.0 * w);
+  if (!(rho > kCrackVacuumDensity)) return turbulent;
+  return fmax(turbulent, 12.0 * mu / (rho * w * w));
+}
+
+//! minmod slope limiter.
+BLAST_HD inline double minmod(double a, double b) {
+  if (a * b <= 0) return 0.0;
+  return fabs(a) < fabs(b) ? a : b;
+}
+
+//! A state from density, velocity, pressure and the products fractions (the MUSCL-Hancock face values).
+BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat, double rho, double u, double p, double Y,
+                                                   double alpha) {
+  const double rho_e = channel_internal_energy(mat, rho, p, alpha, Y);
+  return channel_state(mat, rho, u, rho_e / rho, Y, alpha);
+}
+
+// ---- the crack graph and its kernels (CrackGas runs them; docs/coupling.md "Gas in the cracks") ----------
+
+//! The graph: segment s has ends 2 s (end 0) and 2 s + 1 (end 1) at junctions segment_junction[2 s + e];
+//! junction J lists its ends in junction_entry[junction_offset[J] .. junction_offset[J + 1]) (ascending).
+struct CrackGraphView {
+  const int* segment_junction;
+  const int* junction_offset;
+  const int* junction_entry;
+  int segments, junctions;
+};
+
+//! Per-step arrays of the network: geometry, kind, state, and the work arrays of a step.
+struct CrackNetworkView {
+  const double* length;          //!< per segment [m]
+  const double* aperture;        //!< per segment [m]
+  std::uint8_t* kind;            //!< per segment: CrackSegmentKind
+  ChannelConserved* cons;        //!< per segment
+  double* volume;                //!< per segment: the volume [m2 per m] cons refers to
+  ChannelPrimitive* prim;        //!< per segment: state of the last primitive pass
+  ChannelPrimitive* face;        //!< per end: the MUSCL-Hancock state at the end, segment frame
+  ChannelFlux* out;              //!< per end: outflow rates x flux area [per m of thickness]
+  double* end_area;              //!< per end: total flux area [m]
+  const std::uint8_t* mouth;     //!< per junction: opens into a gas reservoir (a grid cell)
+  const ChannelPrimitive* reservoir;  //!< per junction: the reservoir's state (at rest)
+  ChannelConserved* deposit;     //!< per junction: what went into the reservoir so far (m, E, m1, am)
+};
+
+//! The physical parameters of the channel flow (CrackGasOptions' kernel part).
+struct ChannelFlowParams {
+  double friction_factor;  //!< rough-wall Darcy factor [-]
+  double viscosity;        //!< [Pa s], laminar floor of the friction
+  bool second_order;       //!< MUSCL-Hancock reconstruction along straight chains
+};
+
+//! Primitive state of every segment that holds gas.
+struct SegmentPrimitiveKernel {
+  cip::GasMaterials mat;
+  CrackNetworkView n;
+  BLAST_HD void operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    n.prim[s] = n.kind[s] == kSegmentGas ? segment_state(mat, n.cons[s], n.volume[s]) : ChannelPrimitive{0, 0, 0, 0, 0, 0, 0};
+  }
+};
+
+//! The one segment across end e of segment s when their junction joins exactly two gas segments and is no
+//! mouth (a straight-through chain); -1 otherwise. `other_end` receives the neighbour's end at the junction.
+BLAST_HD inline int chain_neighbour(const CrackGraphView& g, const CrackNetworkView& n, int s, int e, int& other_end) {
+  const int J = g.segment_junction[2 * s + e];
+  if (n.mouth[J]) return -1;
+  int found = -1, count = 0;
+  for (int k = g.junction_offset[J]; k < g.junction_offset[J + 1]; ++k) {
+    const int entry = g.junction_entry[k], o = entry / 2;
+    if (o == s || n.kind[o] != kSegmentGas) continue;
+    ++count;
+    found = entry;
+  }
+  if (count != 1) return -1;
+  other_end = found % 2;
+  return found / 2;
+}
+
+//! States at the two ends of every gas segment after half a step (MUSCL-Hancock: Toro 2009, sec. 14.4, with
+//! minmod slopes of rho, u, p, Y, alpha between chain neighbours, first order where a segment has no
+//! neighbour on one side or a reconstructed value is not positive).
+struct FaceStateKernel {
+  cip::GasMaterials mat;
+  CrackGraphView g;
+  CrackNetworkView n;
+  bool second_order;
+  double dt;
+  BLAST_HD void operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    if (n.kind[s] != kSegmentGas) return;
+    const ChannelPrimitive P = n.prim[s];
+    n.face[2 * s] = P, n.face[2 * s + 1] = P;
+    if (!second_order || is_vacuum(P)) return;
+    int eo0 = 0, eo1 = 0;
+    const int o0 = chain_neighbour(g, n, s, 0, eo0), o1 = chain_neighbour(g, n, s, 1, eo1);
+    if (o0 < 0 || o1 < 0) return;
+    const ChannelPrimitive Q0 = n.prim[o0], Q1 = n.prim[o1];
+    if (is_vacuum(Q0) || is_vacuum(Q1)) return;
+    const double L = n.length[s];
+    const double d0 = 0.5 * (L + n.length[o0]), d1 = 0.5 * (L + n.length[o1]);
+    // Neighbour velocities in this segment's frame: reversed when the two axes meet head to head or tail to tail.
+    const double u0 = eo0 == 0 ? -Q0.u : Q0.u, u1 = eo1 == 1 ? -Q1.u : Q1.u;
+    const double rx = minmod((P.rho - Q0.rho) / d0, (Q1.rho - P.rho) / d1);
+    const double ux = minmod((P.u - u0) / d0, (u1 - P.u) / d1);
+    const double px = minmod((P.p - Q0.p) / d0, (Q1.p - P.p) / d1);
+    const double Yx = minmod((P.Y - Q0.Y) / d0, (Q1.Y - P.Y) / d1);
+    const double ax = minmod((P.alpha - Q0.alpha) / d0, (Q1.alpha - P.alpha) / d1);
+    // Half-step time derivatives of the primitive equations.
+    const double h = 0.5 * dt;
+    const double rt = -(P.u * rx + P.rho * ux), ut = -(P.u * ux + px / P.rho), pt = -(P.u * px + P.rho * P.c * P.c * ux);
+    const double Yt = -P.u * Yx, at = -P.u * ax;
+    const double r0 = P.rho - 0.5 * L * rx + h * rt, r1 = P.rho + 0.5 * L * rx + h * rt;
+    const double p0 = P.p - 0.5 * L * px + h * pt, p1 = P.p + 0.5 * L * px + h * pt;
+    if (!(r0 > kCrackVacuumDensity && r1 > kCrackVacuumDensity && p0 > 0 && p1 > 0)) return;
+    n.face[2 * s] = channel_state_rup(mat, r0, P.u - 0.5 * L * ux + h * ut, p0, P.Y - 0.5 * L * Yx + h * Yt,
+                                      P.alpha - 0.5 * L * ax + h * at);
+    n.face[2 * s + 1] = channel_state_rup(mat, r1, P.u + 0.5 * L * ux + h * ut, p1, P.Y + 0.5 * L * Yx + h * Yt,
+                                          P.alpha + 0.5 * L * ax + h * at);
+  }
+};
+
+//! Scales a flux by a flux area [m].
+BLAST_HD inline ChannelFlux scaled(const ChannelFlux& f, double a) { return {f.m * a, f.q * a, f.E * a, f.m1 * a, f.am * a}; }
+
+//! The ends' outflows at every junction (one thread per junction: each end belongs to one junction, so no two
+//! threads write the same entry). Momentum is in each segment's outward direction at that end.
+//! - a mouth: every end exchanges with the reservoir through a steady nozzle (nozzle_flow(): gas flows from
+//!   the side of higher pressure, from that side's stagnation state, choked at M = 1), flux area = its aperture;
+//!   what leaves the cracks is added to the junction's deposit (in entry order: deterministic);
+//! - one gas segment, no mouth: a closed end (wall_pressure());
+//! - k >= 2 gas segments: every pair exchanges an HLLC flux through min(w_a, w_b) / (k - 1) (a straight chain:
+//!   the smaller aperture), computed once per pair and given to both with opposite signs (exact conservation).
+struct JunctionFluxKernel {
+  cip::GasMaterials mat;
+  CrackGraphView g;
+  CrackNetworkView n;
+  double dt;
+  BLAST_HD void operator()(index_t ji) const {
+    const int J = static_cast<int>(ji);
+    int ends[kCrackMaxDegree];
+    int k = 0;
+    for (int e = g.junction_offset[J]; e < g.junction_offset[J + 1]; ++e)
+      if (n.kind[g.junction_entry[e] / 2] == kSegmentGas) ends[k++] = g.junction_entry[e];
+    if (k == 0) return;
+    // State at each end in the frame pointing into the junction.
+    auto inward = [&](int end) {
+      const ChannelPrimitive f = n.face[end];
+      return end % 2 == 1 ? f : reversed(f);
+    };
+    if (n.mouth[J]) {
+      const ChannelPrimitive r = n.reservoir[J];
+      ChannelConserved dep = n.deposit[J];
+      for (int a = 0; a < k; ++a) {
+        const int end = ends[a];
+        const double w = n.aperture[end / 2];
+        const ChannelPrimitive s = inward(end);
+        ChannelFlux o{0, 0, 0, 0, 0};
+        if (r.p > s.p) {  // into the crack from the reservoir at rest
+          const NozzleFlow nf = nozzle_flow(r.rho, r.p, r.rho * r.c * r.c / r.p, s.p);
+          const double h0 = (r.Edens + r.p) / r.rho;
+          o = {-nf.G * w, (nf.G * nf.u + nf.p) * w, -nf.G * h0 * w, -nf.G * r.Y * w, -nf.G * r.alpha * w};
+        } else if (!is_vacuum(s)) {  // out of the crack from its stagnation state
+          const double kx = s.rho * s.c * s.c / s.p;
+          const double M = s.u > 0 ? s.u / s.c : 0.0, T = 1.0 + 0.5 * (kx - 1.0) * M * M;
+          const NozzleFlow nf = nozzle_flow(s.rho * pow(T, 1.0 / (kx - 1.0)), s.p * pow(T, kx / (kx - 1.0)), kx, r.p);
+          const double h0 = (s.Edens + s.p) / s.rho;
+          o = {nf.G * w, (nf.G * nf.u + nf.p) * w, nf.G * h0 * w, nf.G * s.Y * w, nf.G * s.alpha * w};
+        } else {
+          o = {0, s.p * w, 0, 0, 0};
+        }
+        n.out[end] = o;
+        n.end_area[end] = w;
+        dep.m += dt * o.m, dep.E += dt * o.E, dep.m1 += dt * o.m1, dep.am += dt * o.am;
+      }
+      n.deposit[J] = dep;
+      return;
+    }
+    if (k == 1) {
+      const double w = n.aperture[ends[0] / 2];
+      n.out[ends[0]] = {0, wall_pressure(mat, inward(ends[0])) * w, 0, 0, 0};
+      n.end_area[ends[0]] = w;
+      return;
+    }
+    ChannelFlux acc[kCrackMaxDegree];
+    double area[kCrackMaxDegree];
+    for (int a = 0; a < k; ++a) acc[a] = {0, 0, 0, 0, 0}, area[a] = 0;
+    for (int a = 0; a < k; ++a)
+      for (int b = a + 1; b < k; ++b) {
+        const double A = fmin(n.aperture[ends[a] / 2], n.aperture[ends[b] / 2]) / (k - 1);
+        const ChannelFlux F = scaled(hllc_flux(mat, inward(ends[a]), reversed(inward(ends[b]))), A);
+        acc[a] = {acc[a].m + F.m, acc[a].q + F.q, acc[a].E + F.E, acc[a].m1 + F.m1, acc[a].am + F.am};
+        acc[b] = {acc[b].m - F.m, acc[b].q + F.q, acc[b].E - F.E, acc[b].m1 - F.m1, acc[b].am - F.am};
+        area[a] += A, area[b] += A;
+      }
+    for (int a = 0; a < k; ++a) n.out[ends[a]] = acc[a], n.end_area[ends[a]] = area[a];
+  }
+};
+
+//! Conservative update of every gas segment from its two ends' outflows, the pressure of the walls where the
+//! flux area changes (p (A1 - A0): a uniform gas at rest stays at rest in a channel of varying aperture), then
+//! the wall friction, implicit (q / (1 + dt k), friction_rate()); friction turns kinetic energy into heat, so
+//! E does not change.
+struct SegmentUpdateKernel {
+  CrackNetworkView n;
+  ChannelFlowParams flow;
+  double dt;
+  BLAST_HD void operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    if (n.kind[s] != kSegmentGas) return;
+    const ChannelFlux o0 = n.out[2 * s], o1 = n.out[2 * s + 1];
+    ChannelConserved c = n.cons[s];
+    c.m -= dt * (o0.m + o1.m);
+    c.E -= dt * (o0.E + o1.E);
+    c.m1 -= dt * (o0.m1 + o1.m1);
+    c.am -= dt * (o0.am + o1.am);
+    c.q -= dt * (o1.q - o0.q - n.prim[s].p * (n.end_area[2 * s + 1] - n.end_area[2 * s]));
+    const double V = n.volume[s];
+    if (c.m > kCrackVacuumDensity * V) {
+      const double k = friction_rate(c.m / V, c.q / c.m, n.aperture[s], flow.friction_factor, flow.viscosity);
+      c.q /= 1.0 + dt * k;
+    } else {
+      c.q = 0.0;  // vacuum holds no momentum
+    }
+    n.cons[s] = c;
+  }
+};
+
+//! The largest signal speed over length of a gas segment [1/s]: (|u| + c max(1, 2 / Gamma)) / L (the vacuum
+//! front of a rarefaction runs at u + 2 c / Gamma).
+struct SegmentRateOf {
+  cip::GasMaterials mat;
+  CrackNetworkView n;
+  BLAST_HD double operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    if (n.kind[s] != kSegmentGas) return 0.0;
+    const ChannelPrimitive P = n.prim[s];
+    if (is_vacuum(P)) return 0.0;
+    const double G = mixture_gruneisen(mat, P.alpha);
+    return (fabs(P.u) + P.c * fmax(1.0, 2.0 / G)) / n.length[s];
+  }
+};
+
+}  // namespace blastsim::ibm

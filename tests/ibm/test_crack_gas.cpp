@@ -1,0 +1,203 @@
+//! \file test_crack_gas.cpp
+//! \brief docs/validation.md C1-C3: the crack channel solver alone (CrackGas) on straight channels: Sod's shock
+//! tube against the exact Riemann solution, steady friction flow between two reservoirs against Fanno's
+//! analytic mass flux (unchoked and choked), and exact conservation in a closed branched network.
+#include "catch.hpp"
+#include "exact_riemann.hpp"
+
+#include "blastsim/ibm/crack_gas.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+using namespace blastsim;
+using namespace blastsim::ibm;
+using blastsim::test::ExactRiemann;
+using blastsim::test::Primitive;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+cip::GasMaterials ideal_gas(double gamma) {
+  cip::GasMaterials m;
+  m.air = cip::EquationOfState::ideal(gamma);
+  return m;
+}
+
+//! Conserved gas of a segment of volume V [m2 per m] at rest.
+ChannelConserved at_rest(const cip::GasMaterials& mat, double rho, double p, double V) {
+  return {rho * V, 0.0, mat.air.internal_energy(rho, p) * rho * V, 0.0, 0.0};
+}
+
+//! A straight channel of n segments over [0, length] (junction k at x = k length / n). With `alternate`, every
+//! other segment runs backwards (its end 0 at the right), which the solver must not notice.
+CrackGas straight_channel(int n, double length, double w, const cip::GasMaterials& mat, const CrackGasOptions& opt,
+                          bool alternate) {
+  std::vector<std::array<int, 2>> ends(n);
+  for (int s = 0; s < n; ++s) ends[s] = alternate && s % 2 ? std::array<int, 2>{s + 1, s} : std::array<int, 2>{s, s + 1};
+  CrackGas c(n + 1, ends, mat, opt);
+  c.set_geometry(std::vector<double>(n, length / n), std::vector<double>(n, w));
+  return c;
+}
+
+//! Velocity of segment s along +x.
+double velocity_x(const CrackGas& c, int s, bool alternate) {
+  const ChannelPrimitive p = c.primitives()[s];
+  return alternate && s % 2 ? -p.u : p.u;
+}
+
+double sod_l1(int n, bool alternate, bool second_order) {
+  const cip::GasMaterials mat = ideal_gas(1.4);
+  CrackGasOptions opt;
+  opt.friction_factor = 0, opt.viscosity = 0, opt.courant = 0.9, opt.second_order = second_order;
+  const double w = 1e-3, V = w / n;
+  CrackGas c = straight_channel(n, 1.0, w, mat, opt, alternate);
+  std::vector<ChannelConserved> gas(n);
+  for (int s = 0; s < n; ++s) gas[s] = (s + 0.5) / n < 0.5 ? at_rest(mat, 1.0, 1.0, V) : at_rest(mat, 0.125, 0.1, V);
+  c.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), gas, std::vector<double>(n, V));
+  // Plain Courant steps (no vacuum here): 0.9 dx / max(|u| + c).
+  double t = 0;
+  const double t_end = 0.2;
+  while (t < t_end) {
+    double smax = 0;
+    for (const ChannelPrimitive& p : c.primitives()) smax = std::max(smax, std::fabs(p.u) + p.c);
+    const double dt = std::min(0.9 / n / smax, t_end - t);
+    c.step(dt);
+    c.update_primitives();
+    t += dt;
+  }
+  const ExactRiemann exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4);
+  const std::vector<ChannelPrimitive> p = c.primitives();
+  double err = 0;
+  for (int s = 0; s < n; ++s) err += std::fabs(p[s].rho - exact.sample(((s + 0.5) / n - 0.5) / t).rho);
+  if (alternate) {  // velocities in the x frame match the exact solution's sign
+    const int mid = static_cast<int>(0.6 * n) | 1;
+    CHECK(velocity_x(c, mid, true) > 0);
+  }
+  return err / n;
+}
+
+// ---- Fanno flow (e.g. Anderson 2003, "Modern Compressible Flow", 3rd ed., sec. 3.9) ----------------------
+//! 4 c_f L* / D = f L* / D_h from Mach M to the sonic point.
+double fanno_length(double M, double g) {
+  const double M2 = M * M;
+  return (1 - M2) / (g * M2) + (g + 1) / (2 * g) * std::log((g + 1) * M2 / (2 + (g - 1) * M2));
+}
+//! p / p* of Fanno flow at Mach M.
+double fanno_pressure(double M, double g) { return 1 / M * std::sqrt((g + 1) / (2 + (g - 1) * M * M)); }
+//! Root of f on [a, b] by bisection (f(a), f(b) of opposite signs).
+double bisect(const std::function<double(double)>& f, double a, double b) {
+  double fa = f(a);
+  for (int k = 0; k < 200; ++k) {
+    const double m = 0.5 * (a + b), fm = f(m);
+    if ((fm < 0) == (fa < 0)) a = m, fa = fm;
+    else b = m;
+  }
+  return 0.5 * (a + b);
+}
+struct FannoResult {
+  double G;       //!< mass flux [kg/(m2 s)]
+  bool choked;
+};
+//! Reservoir (rho0, p0) -> isentropic entry at Mach M1 -> constant-area duct with f L / D_h = fld -> back
+//! pressure pb: the mass flux, choked at the duct exit when pb is below the exit's sonic pressure.
+FannoResult fanno_mass_flux(double rho0, double p0, double pb, double fld, double g) {
+  const double c0 = std::sqrt(g * p0 / rho0);
+  auto G = [&](double M) { return rho0 * c0 * M * std::pow(1 + 0.5 * (g - 1) * M * M, -(g + 1) / (2 * (g - 1))); };
+  auto p_entry = [&](double M) { return p0 * std::pow(1 + 0.5 * (g - 1) * M * M, -g / (g - 1)); };
+  const double M_choke = bisect([&](double M) { return fanno_length(M, g) - fld; }, 1e-4, 1.0);
+  const double p_exit_choked = p_entry(M_choke) / fanno_pressure(M_choke, g);
+  if (pb <= p_exit_choked) return {G(M_choke), true};
+  const double M1 = bisect(
+      [&](double M) {
+        const double M2 = bisect([&](double m) { return fanno_length(m, g) - (fanno_length(M, g) - fld); }, M, 1.0);
+        return p_entry(M) * fanno_pressure(M2, g) / fanno_pressure(M, g) - pb;
+      },
+      1e-4, M_choke);
+  return {G(M1), false};
+}
+
+//! The channel solver's steady mass flux between reservoirs (rho0, p0) and pb through fld = f L / (2 w).
+double channel_mass_flux(double rho0, double p0, double pb, double f, int n) {
+  const cip::GasMaterials mat = ideal_gas(1.4);
+  CrackGasOptions opt;
+  opt.friction_factor = f, opt.viscosity = 0;
+  const double L = 0.1, w = 0.5e-3, V = w * L / n;
+  CrackGas c = straight_channel(n, L, w, mat, opt, false);
+  const double rho_b = rho0 * std::pow(pb / p0, 1 / 1.4);
+  c.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), std::vector<ChannelConserved>(n, at_rest(mat, rho_b, pb, V)),
+            std::vector<double>(n, V));
+  const ChannelPrimitive in = channel_state(mat, rho0, 0, mat.air.internal_energy(rho0, p0), 0, 0);
+  const ChannelPrimitive outside = channel_state(mat, rho_b, 0, mat.air.internal_energy(rho_b, pb), 0, 0);
+  c.set_reservoirs({0, n}, {in, outside});
+  const double t_settle = 8e-3, t_measure = 2e-3, dt = 1e-6;
+  for (double t = 0; t < t_settle; t += dt) c.advance(dt);
+  c.clear_deposits();
+  for (double t = 0; t < t_measure; t += dt) c.advance(dt);
+  const std::vector<ChannelConserved> dep = c.deposits();
+  const double G_in = -dep[0].m / (w * t_measure), G_out = dep[n].m / (w * t_measure);
+  CHECK_THAT(G_out / G_in, WithinAbs(1.0, 1e-3));  // steady: what enters leaves
+  return 0.5 * (G_in + G_out);
+}
+
+}  // namespace
+
+TEST_CASE("C1 crack channel: Sod's shock tube along a straight channel against the exact solution", "[ibm][crack][C1]") {
+  const double e100 = sod_l1(100, false, true), e200 = sod_l1(200, false, true), e400 = sod_l1(400, false, true);
+  const double flipped = sod_l1(400, true, true), first = sod_l1(400, false, false);
+  std::printf("C1 crack channel Sod: L1(rho) %.3e (100) %.3e (200) %.3e (400) segments; alternate axes %.3e; "
+              "first order %.3e (400)\n",
+              e100, e200, e400, flipped, first);
+  CHECK(e400 <= 2.1e-3);  // the grid gas's bound (G1)
+  CHECK(e200 < e100);
+  CHECK(e400 < e200);
+  CHECK_THAT(flipped, WithinAbs(e400, 1e-12));  // segment orientation does not matter
+}
+
+TEST_CASE("C2 crack channel: steady friction flow between two reservoirs against Fanno flow", "[ibm][crack][C2]") {
+  const double rho0 = 10.0, p0 = 1e6, f = 0.02;  // L = 0.1 m, w = 0.5 mm: f L / D_h = 0.02 x 0.1 / 1e-3 = 2
+  for (double pb : {0.7e6, 0.5e6, 0.2e6}) {
+    const FannoResult ref = fanno_mass_flux(rho0, p0, pb, 2.0, 1.4);
+    const double G = channel_mass_flux(rho0, p0, pb, f, 100);
+    std::printf("C2 Fanno, f L / D_h = 2, p_b / p0 = %.2f (%s): mass flux %.2f kg/(m2 s), analytic %.2f (%+.2f %%)\n",
+                pb / p0, ref.choked ? "choked" : "subsonic", G, ref.G, 100 * (G / ref.G - 1));
+    CHECK(std::fabs(G / ref.G - 1) < 0.03);
+  }
+  // Without friction the mouth limits the flow: the isentropic nozzle's choked flux.
+  const double G = channel_mass_flux(rho0, p0, 0.2e6, 0.0, 50);
+  const double c0 = std::sqrt(1.4 * p0 / rho0), G_star = rho0 * c0 * std::pow(2 / 2.4, 2.4 / 0.8);
+  std::printf("C2 frictionless channel, p_b / p0 = 0.2: mass flux %.2f vs choked nozzle %.2f kg/(m2 s) (%+.2f %%)\n", G,
+              G_star, 100 * (G / G_star - 1));
+  CHECK(std::fabs(G / G_star - 1) < 0.03);
+}
+
+TEST_CASE("C3 crack channel: a closed branched network conserves mass and energy exactly", "[ibm][crack][C3]") {
+  // A star of four channels of 10 segments each around junction 0, arms of different apertures, closed ends,
+  // high pressure in one arm and a vacuum in another.
+  const cip::GasMaterials mat = ideal_gas(1.4);
+  CrackGasOptions opt;
+  const int arm = 10, n = 4 * arm;
+  std::vector<std::array<int, 2>> ends;
+  for (int a = 0; a < 4; ++a)
+    for (int k = 0; k < arm; ++k) ends.push_back({k == 0 ? 0 : 1 + a * arm + k - 1, 1 + a * arm + k});
+  CrackGas c(1 + 4 * arm, ends, mat, opt);
+  std::vector<double> L(n, 0.01), w(n), V(n);
+  std::vector<ChannelConserved> gas(n);
+  for (int s = 0; s < n; ++s) {
+    const int a = s / arm;
+    w[s] = 1e-4 * (a + 1), V[s] = L[s] * w[s];
+    gas[s] = a == 0 ? at_rest(mat, 100.0, 2e7, V[s]) : a == 3 ? ChannelConserved{0, 0, 0, 0, 0} : at_rest(mat, 1.2, 1e5, V[s]);
+  }
+  c.set_geometry(L, w);
+  c.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), gas, V);
+  const CrackGasTotals t0 = c.totals();
+  for (int k = 0; k < 200; ++k) c.advance(2e-7);
+  const CrackGasTotals t1 = c.totals();
+  std::printf("C3 closed star network after 40 us: mass %.15e -> %.15e (%.1e), energy %.15e -> %.15e (%.1e), p max %.3e\n",
+              t0.mass, t1.mass, t1.mass / t0.mass - 1, t0.energy, t1.energy, t1.energy / t0.energy - 1, t1.max_pressure);
+  CHECK(std::fabs(t1.mass / t0.mass - 1) < 1e-12);
+  CHECK(std::fabs(t1.energy / t0.energy - 1) < 1e-12);
+  // The gas reached the vacuum arm's far end.
+  CHECK(c.primitives()[4 * arm - 1].rho > 0);
+}
