@@ -13,6 +13,9 @@ Writes into OUTPUT_DIR:
   cracks.png                broken joints and total crack length
   gas_inside_rock.png       gas mass inside the rock's outer radius (coupling_series.csv, monitor region)
   energy_budget.png         the terms of the gas + rock energy budget and its residual
+With crack gas ([crack_gas] enabled = true), also:
+  fig3_crack_gas_NNNNNN.png the grid gas's pressure with the cracks coloured by their own gas's pressure
+  crack_gas.png             gas mass in the cracks, their largest pressure and the hole-centre pressure
 Needs Debian's python3-matplotlib and python3-vtk9 (/usr/bin/python3).
 """
 import os
@@ -70,6 +73,17 @@ def read_cracks(path):
     return pts[broken]
 
 
+def read_crack_gas(path):
+    """Broken joints as segments with their gas pressure [Pa] (None without crack gas in the file)."""
+    g = read_grid(path)
+    p = g.GetCellData().GetArray("gas_pressure")
+    if p is None:
+        return None
+    pts = vtk_to_numpy(g.GetPoints().GetData())[:, :2].reshape(-1, 2, 2)
+    broken = vtk_to_numpy(g.GetCellData().GetArray("broken")).astype(bool)
+    return pts[broken], vtk_to_numpy(p)[broken]
+
+
 def save(fig, out, name):
     fig.savefig(os.path.join(out, name), dpi=110, bbox_inches="tight")
     plt.close(fig)
@@ -89,6 +103,28 @@ def fig3(out, gas_file, rock_file, joints_file, t):
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_title(f"gas speed, rock (grey) and cracks (red) at t = {t * 1e3:.3f} ms")
+    return fig
+
+
+def fig3_crack_gas(out, gas_file, rock_file, cracks, t):
+    """The grid gas's pressure, the rock, and the cracks coloured by their own gas's pressure (one scale)."""
+    g = read_gas(os.path.join(out, gas_file))
+    tris, _ = read_rock(os.path.join(out, rock_file))
+    segs, p = cracks
+    fig, ax = plt.subplots(figsize=(6.4, 5.6), constrained_layout=True)
+    vmax = max(np.max(np.where(g["active"] == 1, g["pressure"], 0)), np.max(p, initial=0)) / 1e6
+    norm = matplotlib.colors.Normalize(vmin=0, vmax=vmax)
+    im = ax.imshow(np.ma.masked_where(g["active"] == 0, g["pressure"] / 1e6), origin="lower", extent=g["extent"],
+                   cmap="inferno", norm=norm)
+    fig.colorbar(im, ax=ax, label="gas pressure [MPa] (grid and cracks)")
+    ax.add_collection(PolyCollection(tris, facecolors="0.8", edgecolors="none", alpha=0.7))
+    lines = LineCollection(segs, cmap="inferno", norm=norm, linewidths=1.6)
+    lines.set_array(p / 1e6)
+    ax.add_collection(lines)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(f"gas pressure in the grid and in the cracks at t = {t * 1e3:.3f} ms")
     return fig
 
 
@@ -133,6 +169,18 @@ def series_plots(out):
     cs = read_csv(os.path.join(out, "coupling_series.csv"))
     if cs is None:
         return
+    if "crack_gas_mass_kg_per_m" in cs and np.any(cs["crack_gas_mass_kg_per_m"] > 0):
+        fig, ax = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True, constrained_layout=True)
+        t = cs["time_s"] * 1e3
+        ax[0].plot(t, cs["crack_gas_mass_kg_per_m"] * 1e3)
+        ax[0].set_ylabel("gas mass in the cracks [g/m]")
+        ax[1].plot(t, cs["crack_gas_pressure_max_Pa"] / 1e6, label="largest crack gas pressure")
+        if hole is not None:
+            ax[1].plot(hole["t"] * 1e3, hole["p"] / 1e6, label="gas pressure at the hole centre")
+        ax[1].set_xlabel("time [ms]")
+        ax[1].set_ylabel("[MPa]")
+        ax[1].legend()
+        save(fig, out, "crack_gas.png")
     t = cs["time_s"] * 1e3
     fig, ax = plt.subplots()
     ax.plot(t, cs["broken_joints"], label="broken joints")
@@ -175,6 +223,9 @@ def main():
     n = min(len(gas), len(rock), len(joints))
     for k in range(n):
         save(fig3(out, gas[k][1], rock[k][1], joints[k][1], gas[k][0]), out, f"fig3_velocity_{k:06d}.png")
+        cracks = read_crack_gas(os.path.join(out, joints[k][1]))
+        if cracks is not None:
+            save(fig3_crack_gas(out, gas[k][1], rock[k][1], cracks, gas[k][0]), out, f"fig3_crack_gas_{k:06d}.png")
     later = [k for k in range(n) if (gas[k][0] > 0 if fig4_time is None else gas[k][0] >= fig4_time)]
     if later:
         k = later[0]

@@ -135,12 +135,8 @@ void GasRockCoupler::crack_mouths() {
 void GasRockCoupler::apply_crack_deposits() {
   const int nj = crack_->junctions(), ns = crack_->segments(), records = nj + ns;
   int* keys = device_ptr(a_->keys);
-  const int* jc = device_ptr(a_->junction_cell);
-  const int* hc = device_ptr(a_->handover_cell);
-  for_each_index("ibm.crack.keys", records, [=] BLAST_HD(index_t k) {
-    const int c = k < nj ? jc[k] : hc[k - nj];
-    keys[k] = c < 0 ? 0x7fffffff : c;
-  });
+  for_each_index("ibm.crack.keys", records,
+                 CrackDepositKeyKernel{device_ptr(a_->junction_cell), device_ptr(a_->handover_cell), keys, nj});
   thrust::sequence(thrust::device, a_->order.begin(), a_->order.end());
   thrust::stable_sort_by_key(thrust::device, a_->keys.begin(), a_->keys.end(), a_->order.begin());
   const cip::GasGrid g = gas_.grid();

@@ -413,6 +413,19 @@ struct CrackMouthKernel {
   }
 };
 
+//! The cell key of every deposit record (0 .. junctions - 1: the mouths, then the segments' hand-overs; a
+//! record without a cell sorts last).
+struct CrackDepositKeyKernel {
+  const int* junction_cell;
+  const int* handover_cell;
+  int* key;
+  int junctions;
+  BLAST_HD void operator()(index_t k) const {
+    const int c = k < junctions ? junction_cell[k] : handover_cell[k - junctions];
+    key[k] = c < 0 ? 0x7fffffff : c;
+  }
+};
+
 //! Adds the cracks' deposits to their cells (one thread per run of equal cell keys in the sorted records: the
 //! first of the run sums them in sorted order, so the bytes do not depend on the thread schedule). Records
 //! 0 .. junctions - 1 are the mouths' deposits, the rest the segments' hand-overs. The deposited energy is
