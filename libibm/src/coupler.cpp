@@ -88,7 +88,7 @@ void GasRockCoupler::gas_to_rock() {
   const cip::GasMaterials& mat = gas_.materials();
   for_each_index("ibm.edge_pressure", 3 * static_cast<index_t>(rock.triangles),
                  EdgePressureKernel{rock, g, mat, gas_.material_fields(), ib.cell_active, s.rho.f, s.e.f,
-                                    mat.air.pressure(ambient_.density, ambient_.internal_energy),
+                                    mat_ambient_pressure(),
                                     crack_ ? crack_->network().kind : nullptr, crack_ ? crack_->network().prim : nullptr,
                                     crack_ ? device_ptr(a_->load_factor) : nullptr});
 }

@@ -159,13 +159,17 @@ double CrackGas::stable_dt() const {
 }
 
 void CrackGas::step(double dt) {
+  update_primitives();
+  step_from_primitives(dt);
+}
+
+void CrackGas::step_from_primitives(double dt) {
   const CrackNetworkView n = network();
   const CrackGraphView g = graph();
-  update_primitives();
   for_each_index("crack.faces", segments_, FaceStateKernel{mat_, g, n, options_.second_order, dt});
   for_each_index("crack.junctions", junctions_, JunctionFluxKernel{mat_, g, n, dt});
   for_each_index("crack.update", segments_,
-                 SegmentUpdateKernel{n, ChannelFlowParams{options_.friction_factor, options_.viscosity, options_.second_order}, dt});
+                 SegmentUpdateKernel{n, ChannelFlowParams{options_.friction_factor, options_.viscosity}, dt});
 }
 
 int CrackGas::advance(double dt) {
@@ -173,8 +177,10 @@ int CrackGas::advance(double dt) {
   update_primitives();
   const double limit = stable_dt();
   const int steps = std::isfinite(limit) ? std::max(1, static_cast<int>(std::ceil(dt / limit * (1 - 1e-12)))) : 1;
-  for (int k = 0; k < steps; ++k) step(dt / steps);
-  update_primitives();
+  for (int k = 0; k < steps; ++k) {  // each substep starts from the primitives just computed
+    step_from_primitives(dt / steps);
+    update_primitives();
+  }
   return steps;
 }
 

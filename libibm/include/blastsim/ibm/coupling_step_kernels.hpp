@@ -206,6 +206,21 @@ struct ApplyTransitionKernel {
   }
 };
 
+//! Cell (i, j) holding point (x, y), or false outside the grid.
+BLAST_HD inline bool cell_of(const cip::GasGrid& g, double x, double y, int& i, int& j) {
+  i = static_cast<int>(floor((x - g.x_min) / g.dx));
+  j = static_cast<int>(floor((y - g.y_min) / g.dy));
+  return i >= 0 && i < g.nx && j >= 0 && j < g.ny;
+}
+
+//! The cell an exposed edge from p0 to p1 faces: the one holding the point a hundredth of a cell off its
+//! midpoint along its outward normal (rule 1 of docs/coupling.md "Gas -> rock"); false outside the grid.
+BLAST_HD inline bool facing_cell(const cip::GasGrid& g, const fdem::Vec2& p0, const fdem::Vec2& p1, int& i, int& j) {
+  const fdem::Vec2 n = fdem::edge_outward_normal(p0, p1);
+  const double off = 0.01 * fmin(g.dx, g.dy) / sqrt(n.x * n.x + n.y * n.y);
+  return cell_of(g, 0.5 * (p0.x + p1.x) + off * n.x, 0.5 * (p0.y + p1.y) + off * n.y, i, j);
+}
+
 //! Pressure on each exposed rock edge (docs/coupling.md "Gas -> rock"). A face of a crack that holds its own
 //! gas (crack gas on, docs/coupling.md "Gas in the cracks") takes that gas's pressure. Otherwise the cell the edge faces (the one
 //! holding the point a hundredth of a cell off the midpoint along the outward normal) gives its pressure when
@@ -237,12 +252,9 @@ struct EdgePressureKernel {
     }
     const int a = fdem::slot_first_node(s), b = fdem::slot_second_node(s);
     const double mx = 0.5 * (rock.x[a] + rock.x[b]), my = 0.5 * (rock.y[a] + rock.y[b]);
-    const fdem::Vec2 n = fdem::edge_outward_normal({rock.x[a], rock.y[a]}, {rock.x[b], rock.y[b]});
-    const double off = 0.01 * fmin(g.dx, g.dy) / sqrt(n.x * n.x + n.y * n.y);
-    const int fi = static_cast<int>(floor((mx + off * n.x - g.x_min) / g.dx));
-    const int fj = static_cast<int>(floor((my + off * n.y - g.y_min) / g.dy));
+    int fi = 0, fj = 0;
     double p = ambient_pressure;
-    if (fi >= 0 && fi < g.nx && fj >= 0 && fj < g.ny && active(fi, fj)) {
+    if (facing_cell(g, {rock.x[a], rock.y[a]}, {rock.x[b], rock.y[b]}, fi, fj) && active(fi, fj)) {
       p = cip::cell_pressure(mat, materials, rho(fi, fj), e(fi, fj), fi, fj);
     } else if (kind == fdem::kEdgeBoundary) {
       const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
@@ -272,21 +284,6 @@ struct EdgeForceOf {
 };
 
 // ---- the gas in the cracks (docs/coupling.md "Gas in the cracks") -----------------------------------------
-
-//! Cell (i, j) holding point (x, y), or false outside the grid.
-BLAST_HD inline bool cell_of(const cip::GasGrid& g, double x, double y, int& i, int& j) {
-  i = static_cast<int>(floor((x - g.x_min) / g.dx));
-  j = static_cast<int>(floor((y - g.y_min) / g.dy));
-  return i >= 0 && i < g.nx && j >= 0 && j < g.ny;
-}
-
-//! The cell an exposed edge from p0 to p1 faces: the one holding the point a hundredth of a cell off its
-//! midpoint along its outward normal (rule 1 of docs/coupling.md "Gas -> rock"); false outside the grid.
-BLAST_HD inline bool facing_cell(const cip::GasGrid& g, const fdem::Vec2& p0, const fdem::Vec2& p1, int& i, int& j) {
-  const fdem::Vec2 n = fdem::edge_outward_normal(p0, p1);
-  const double off = 0.01 * fmin(g.dx, g.dy) / sqrt(n.x * n.x + n.y * n.y);
-  return cell_of(g, 0.5 * (p0.x + p1.x) + off * n.x, 0.5 * (p0.y + p1.y) + off * n.y, i, j);
-}
 
 //! Aperture of a crack from the mean normal opening o of its faces [m] and the residual aperture w_r [m]:
 //! w = w_r + o when open; closed (o < 0: the faces pressed together), w = w_r exp(o / w_r), which joins

@@ -109,6 +109,7 @@ class CrackGas {
   const CrackGasOptions& options() const { return options_; }
 
  private:
+  void step_from_primitives(double dt);  //!< step() once the primitives are current
   int segments_ = 0, junctions_ = 0;
   cip::GasMaterials mat_;
   CrackGasOptions options_;

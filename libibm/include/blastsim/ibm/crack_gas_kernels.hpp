@@ -216,7 +216,6 @@ struct CrackNetworkView {
 struct ChannelFlowParams {
   double friction_factor;  //!< rough-wall Darcy factor [-]
   double viscosity;        //!< [Pa s], laminar floor of the friction
-  bool second_order;       //!< MUSCL-Hancock reconstruction along straight chains
 };
 
 //! Primitive state of every segment that holds gas.
