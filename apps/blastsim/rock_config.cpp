@@ -133,6 +133,10 @@ void read_rock_section(TableReader& root, RockCaseConfig& c) {
     p.finish();
     c.pressures.push_back(l);
   }
+  for (TableReader& v : rock.table_array("viscous_boundary")) {
+    c.viscous_boundaries.push_back(v.text("boundary", {}));
+    v.finish();
+  }
   rock.finish();
   c.material.validate();
   c.options.validate();

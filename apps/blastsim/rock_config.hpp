@@ -72,6 +72,9 @@ struct RockCaseConfig {
   std::array<double, 2> initial_velocity{};  //!< [m/s]
   std::vector<VelocityLoad> velocities;
   std::vector<PressureLoad> pressures;
+  //! [[rock.viscous_boundary]]: boundary groups where the model cuts a rock mass that goes on (Lysmer and
+  //! Kuhlemeyer's dashpots: waves leave instead of reflecting)
+  std::vector<std::string> viscous_boundaries;
   double pressure_ramp_time = 0;   //!< [s] pressures rise as a half cosine over this time (0: at once)
   double end_time = 0;             //!< [s]
   std::optional<double> fixed_dt;  //!< [s]

@@ -89,17 +89,26 @@ RockModel make_rock_model(const RockCaseConfig& c) {
     solver.prescribe_velocity(nodes, l.along_x, l.along_y, l.velocity[0], l.velocity[1]);
     m.velocity_nodes.push_back(nodes);
   }
-  for (size_t k = 0; k < c.pressures.size(); ++k) {
-    const PressureLoad& l = c.pressures[k];
-    const auto group = mesh.boundary_groups.find(l.boundary);
+  // The edge slots of a named boundary group; `key` names the input table that asked for it.
+  auto group_slots = [&](const std::string& key, const std::string& group_name) {
+    const auto group = mesh.boundary_groups.find(group_name);
     if (group == mesh.boundary_groups.end()) {
       std::string names;
       for (const auto& [name, edges] : mesh.boundary_groups) names += (names.empty() ? "" : ", ") + name;
-      throw InputError(fmt::format("rock.pressure.{}.boundary = \"{}\": the mesh has no such boundary group (it has: {})",
-                                   k, l.boundary, names));
+      throw InputError(fmt::format("{}.boundary = \"{}\": the mesh has no such boundary group (it has: {})", key,
+                                   group_name, names));
     }
-    solver.set_edge_pressure(fdem::boundary_slots(topo, group->second, l.boundary), l.pressure);
+    return fdem::boundary_slots(topo, group->second, group_name);
+  };
+  for (size_t k = 0; k < c.pressures.size(); ++k)
+    solver.set_edge_pressure(group_slots(fmt::format("rock.pressure.{}", k), c.pressures[k].boundary),
+                             c.pressures[k].pressure);
+  std::vector<int> viscous;
+  for (size_t k = 0; k < c.viscous_boundaries.size(); ++k) {
+    const std::vector<int> slots = group_slots(fmt::format("rock.viscous_boundary.{}", k), c.viscous_boundaries[k]);
+    viscous.insert(viscous.end(), slots.begin(), slots.end());
   }
+  if (!viscous.empty()) solver.set_viscous_boundary(viscous);
   std::vector<std::array<double, 2>> probe_points;
   std::vector<double> probe_until;
   for (const RockProbe& p : c.probes) probe_points.push_back(p.position), probe_until.push_back(p.until);
@@ -140,7 +149,7 @@ RockOutputs::RockOutputs(const RockCaseConfig& c, const RockModel& model, bool r
                 std::string h = "step,time_s,kinetic_J_per_m,strain_J_per_m,joint_work_J_per_m,"
                                 "fracture_dissipated_J_per_m,contact_work_J_per_m,friction_dissipated_J_per_m,"
                                 "damping_dissipated_J_per_m,external_work_J_per_m,energy_balance_J_per_m,"
-                                "broken_joints,crack_length_m";
+                                "broken_joints,crack_length_m,radiated_J_per_m";
                 for (size_t k = 0; k < model.velocity_nodes.size(); ++k)
                   h += fmt::format(",velocity{0}_reaction_x_N_per_m,velocity{0}_reaction_y_N_per_m", k);
                 return h;
@@ -353,10 +362,10 @@ fdem::RockEnergies RockOutputs::monitor() {
       row += fmt::format(",{:.6e},{:.6e},{:.6e}", p.vx, p.vy, std::hypot(p.vx, p.vy));
     probes_->row(row);
   }
-  series_.row(fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e}",
+  series_.row(fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e},{:.9e}",
                          solver_.steps(), solver_.time(), e.kinetic, e.strain, e.joint_work, e.fracture_dissipated,
                          e.contact_work, e.friction_dissipated, e.damping_dissipated, e.external_work, balance,
-                         e.broken_joints, e.crack_length) +
+                         e.broken_joints, e.crack_length, -e.boundary_work) +
               reactions);
   return e;
 }

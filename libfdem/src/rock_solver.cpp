@@ -92,12 +92,13 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   copy_from_host(a.triangle_params.inv_f0, inv_f0), copy_from_host(a.triangle_params.area0, area0);
   copy_from_host(a.triangle_params.eta, eta);
   a.node_loads.constraint.assign(nodes, 0), a.node_loads.v_prescribed.assign(nodes, Vec2{0.0, 0.0});
+  a.node_loads.dashpot.assign(nodes, Mat2{0.0, 0.0, 0.0, 0.0});
   copy_from_host(a.nodes.x, x), copy_from_host(a.nodes.y, y);
   a.nodes.vx.assign(nodes, 0.0), a.nodes.vy.assign(nodes, 0.0);
   for (DeviceVector<double>* f : {&a.forces.triangle_x, &a.forces.triangle_y, &a.forces.contact_x, &a.forces.contact_y,
                                   &a.forces.pressure_x, &a.forces.pressure_y})
     f->assign(nodes, 0.0);
-  a.ledger.work.assign(nodes, NodeWork{0, 0, 0, 0, 0}), a.ledger.support.assign(nodes, Vec2{0.0, 0.0});
+  a.ledger.work.assign(nodes, NodeWork{0, 0, 0, 0, 0, 0}), a.ledger.support.assign(nodes, Vec2{0.0, 0.0});
   a.triangles.stress.assign(triangles_, TriangleStress{0, 0, 0});
   a.triangles.dissipation.assign(triangles_, TriangleDissipation{0, 0});
 
@@ -328,13 +329,38 @@ void RockSolver::prescribe_velocity(const std::vector<int>& nodes, bool along_x,
   std::vector<double> hvx = to_host(a.nodes.vx), hvy = to_host(a.nodes.vy);
   for (int n : nodes) {
     if (n < 0 || n >= node_count()) throw InputError("prescribed node " + std::to_string(n) + " does not exist");
-    if (along_x) c[n] |= 1, vp[n].x = vx, hvx[n] = vx;
-    if (along_y) c[n] |= 2, vp[n].y = vy, hvy[n] = vy;
+    if (along_x) c[n] |= kPrescribedX, vp[n].x = vx, hvx[n] = vx;
+    if (along_y) c[n] |= kPrescribedY, vp[n].y = vy, hvy[n] = vy;
   }
   copy_from_host(a.node_loads.constraint, c);
   copy_from_host(a.node_loads.v_prescribed, vp);
   copy_from_host(a.nodes.vx, hvx);
   copy_from_host(a.nodes.vy, hvy);
+}
+
+void RockSolver::set_viscous_boundary(const std::vector<int>& slots) {
+  std::vector<char> is_boundary(3 * static_cast<size_t>(triangles_), 0);
+  for (const BoundaryEdge& b : boundary_edges_) is_boundary[b.n0] = 1;
+  detail::RockArrays& a = *a_;
+  std::vector<std::uint8_t> c = to_host(a.node_loads.constraint);
+  std::vector<Mat2> C = to_host(a.node_loads.dashpot);
+  const std::vector<double> x0 = to_host(a.node_params.x0), y0 = to_host(a.node_params.y0);
+  const double rho = material_.density, cp = material_.p_wave_speed(), cs = material_.s_wave_speed();
+  std::vector<char> done(is_boundary.size(), 0);
+  for (int s : slots) {
+    if (s < 0 || s >= 3 * triangles_ || !is_boundary[s])
+      throw InputError("viscous boundary: edge slot " + std::to_string(s) + " is not an edge of the mesh boundary");
+    if (done[s]) continue;  // an edge listed twice gets its dashpots once
+    done[s] = 1;
+    const int n0 = slot_first_node(s), n1 = slot_second_node(s);
+    const Mat2 k = viscous_boundary_coefficients(rho, cp, cs, {x0[n0], y0[n0]}, {x0[n1], y0[n1]});
+    for (int n : {n0, n1}) {
+      C[n] = {C[n].a + k.a, C[n].b + k.b, C[n].c + k.c, C[n].d + k.d};
+      c[n] |= kViscousBoundary;
+    }
+  }
+  copy_from_host(a.node_loads.constraint, c);
+  copy_from_host(a.node_loads.dashpot, C);
 }
 
 void RockSolver::set_velocities(const std::vector<double>& vxy) {
@@ -487,7 +513,8 @@ RockEnergies RockSolver::energies() const {
     return reduce_sum("fdem.energy.work", node_count(), 0.0, [=] BLAST_HD(index_t n) { return work[n].*kind; });
   };
   e.pressure_work = work_sum(&NodeWork::pressure);
-  e.external_work = e.pressure_work + work_sum(&NodeWork::support) + work_sum(&NodeWork::gravity);
+  e.boundary_work = work_sum(&NodeWork::boundary);
+  e.external_work = e.pressure_work + work_sum(&NodeWork::support) + work_sum(&NodeWork::gravity) + e.boundary_work;
   e.joint_work = work_sum(&NodeWork::joint);
   e.contact_work = work_sum(&NodeWork::contact);
   e.damping_dissipated =
@@ -595,7 +622,8 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   // Every index and flag against what it addresses, before any kernel reads it.
   const detail::RockArrays& a = *a_;
   const double T = triangles_;
-  check_range(r, "rock.node_loads.constraint", to_host(a.node_loads.constraint), 0, 3);
+  check_range(r, "rock.node_loads.constraint", to_host(a.node_loads.constraint), 0,
+              kPrescribedX | kPrescribedY | kViscousBoundary);
   check_range(r, "rock.edges.exposed", to_host(a.edges.exposed), 0, 2);
   check_range(r, "rock.joints.broken", to_host(a.joints.broken), 0, 1);
   std::vector<double> damage;

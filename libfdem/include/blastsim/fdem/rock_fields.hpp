@@ -25,7 +25,11 @@ struct NodeWork {
   double contact;   //!< done on the contacts
   double support;   //!< prescribed-velocity supports
   double gravity;
+  double boundary;  //!< viscous-boundary dashpots (<= 0: the energy the waves carried out of the model)
 };
+
+//! Bits of NodeLoads::constraint: velocity prescribed along x, along y; node on a viscous boundary.
+inline constexpr std::uint8_t kPrescribedX = 1, kPrescribedY = 2, kViscousBoundary = 4;
 
 //! Cauchy stress of a constant-strain triangle [Pa].
 struct TriangleStress {
@@ -88,9 +92,10 @@ struct PairLoad {
   X(double, length, "initial length [m]")
 
 // ---- loads: set by the host between steps, read by the kernels -------------------------------------------
-#define BLASTSIM_ROCK_NODE_LOADS(X)                                  \
-  X(std::uint8_t, constraint, "bit 0: x velocity prescribed; bit 1: y") \
-  X(Vec2, v_prescribed, "prescribed velocity [m/s]")
+#define BLASTSIM_ROCK_NODE_LOADS(X)                                                            \
+  X(std::uint8_t, constraint, "bit 0: x velocity prescribed; bit 1: y; bit 2: viscous boundary")   \
+  X(Vec2, v_prescribed, "prescribed velocity [m/s]")                                               \
+  X(Mat2, dashpot, "viscous-boundary coefficients C [N s/m2] (force -C v), read where bit 2 is set")
 
 // ---- state: what evolves ----------------------------------------------------------------------------------
 #define BLASTSIM_ROCK_NODE_MOTION(X)    \

@@ -71,6 +71,12 @@ class RockSolver {
   // --- loads and constraints (host calls between steps) ---
   //! Prescribes the velocity of `nodes` [m/s] along x and/or y (fixed nodes: zero velocity).
   void prescribe_velocity(const std::vector<int>& nodes, bool along_x, bool along_y, double vx, double vy);
+  //! Makes the given boundary edge slots a viscous (non-reflecting) boundary, where the model cuts a rock mass
+  //! that goes on beyond it: Lysmer and Kuhlemeyer's dashpots, rho c_p on the normal and rho c_s on the
+  //! tangential velocity (rock_step_kernels.hpp), lumped on the edges' nodes from the initial geometry and
+  //! taken implicitly (no limit on the step). Their work is RockEnergies::boundary_work. Throws InputError for a
+  //! slot that is not a mesh-boundary edge.
+  void set_viscous_boundary(const std::vector<int>& slots);
   //! Sets every node's velocity [m/s] from a host array of 2 per node.
   void set_velocities(const std::vector<double>& vxy);
   //! Pressure [Pa] on the given edge slots (the rest keep theirs); pushes into the rock.

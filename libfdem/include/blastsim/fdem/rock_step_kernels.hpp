@@ -381,11 +381,33 @@ struct ContactGatherKernel {
   }
 };
 
+//! Viscous boundary of Lysmer and Kuhlemeyer (1969, J. Eng. Mech. Div. ASCE 95(EM4), 859-877): dashpots with
+//! normal traction -rho c_p v_n and shear traction -rho c_s v_t absorb plane P and S waves that arrive at normal
+//! incidence (the boundary has the impedance of the rock beyond it). Lumped on the nodes of a boundary edge from
+//! p0 to p1: each end node gets force -C v with C = (L / 2) rho (c_p n n^T + c_s t t^T), L the edge length, n and
+//! t its unit normal and tangent.
+BLAST_HD inline Mat2 viscous_boundary_coefficients(double rho, double cp, double cs, const Vec2& p0, const Vec2& p1) {
+  const double dx = p1.x - p0.x, dy = p1.y - p0.y;
+  const double length = sqrt(dx * dx + dy * dy);
+  const double tx = dx / length, ty = dy / length;  // unit tangent; the unit normal is (ty, -tx)
+  const double k = 0.5 * rho * length;
+  const double cxy = k * (cs - cp) * tx * ty;
+  return {k * (cp * ty * ty + cs * tx * tx), cxy, cxy, k * (cp * tx * tx + cs * ty * ty)};
+}
+
+//! A node's new velocity with its dashpots taken implicitly (stable at any step): solves (m I + dt C) v = m v_free,
+//! v_free being the velocity the node's other forces alone give it over the step.
+BLAST_HD inline Vec2 viscous_boundary_velocity(double m, double dt, const Mat2& C, const Vec2& v_free) {
+  const Mat2 inv = Mat2{m + dt * C.a, dt * C.b, dt * C.c, m + dt * C.d}.inverse();
+  return {m * (inv.a * v_free.x + inv.b * v_free.y), m * (inv.c * v_free.x + inv.d * v_free.y)};
+}
+
 //! Node update (symplectic Euler, docs/fdem-solver.md): gathers the node's forces (its triangle, the joints
-//! on its two edges, contact, pressure on its triangle's exposed edges, gravity), applies prescribed
-//! velocities, moves the node, and accumulates the work of each kind of force by the trapezoid rule: the
-//! force at x_n works over half of the previous displacement and half of the next one, so linear springs'
-//! work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m every step).
+//! on its two edges, contact, pressure on its triangle's exposed edges, gravity), takes its viscous-boundary
+//! dashpots implicitly, applies prescribed velocities, moves the node, and accumulates the work of each kind of
+//! force by the trapezoid rule: the force at x_n works over half of the previous displacement and half of the
+//! next one, so linear springs' work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m
+//! every step).
 struct NodeUpdateKernel {
   NodeParams params;  //!< mass
   NodeLoads loads;
@@ -406,17 +428,20 @@ struct NodeUpdateKernel {
     const Vec2 f{forces.triangle_x[n] + f_joint.x + f_con.x + f_ext.x, forces.triangle_y[n] + f_joint.y + f_con.y + f_ext.y};
     const double vx = nodes.vx[n], vy = nodes.vy[n];
     Vec2 v{vx + f.x / m * dt, vy + f.y / m * dt};
-    Vec2 support{0, 0};
     const std::uint8_t cons = loads.constraint[n];
+    Vec2 f_bnd{0, 0};  // viscous boundary
+    Mat2 C{0, 0, 0, 0};
+    if (cons & kViscousBoundary) {
+      C = loads.dashpot[n];
+      v = viscous_boundary_velocity(m, dt, C, v);
+    }
     const Vec2 vp = loads.v_prescribed[n];
-    if (cons & 1) {
-      support.x = m * (vp.x - vx) / dt - f.x;
-      v.x = vp.x;
-    }
-    if (cons & 2) {
-      support.y = m * (vp.y - vy) / dt - f.y;
-      v.y = vp.y;
-    }
+    if (cons & kPrescribedX) v.x = vp.x;
+    if (cons & kPrescribedY) v.y = vp.y;
+    if (cons & kViscousBoundary) f_bnd = {-(C.a * v.x + C.b * v.y), -(C.c * v.x + C.d * v.y)};
+    Vec2 support{0, 0};
+    if (cons & kPrescribedX) support.x = m * (vp.x - vx) / dt - f.x - f_bnd.x;
+    if (cons & kPrescribedY) support.y = m * (vp.y - vy) / dt - f.y - f_bnd.y;
     const Vec2 d{0.5 * (vx * dt_prev + v.x * dt), 0.5 * (vy * dt_prev + v.y * dt)};
     ledger.support[n] = support;
     nodes.vx[n] = v.x;
@@ -429,6 +454,7 @@ struct NodeUpdateKernel {
     w.contact -= f_con.x * d.x + f_con.y * d.y;
     w.support += support.x * d.x + support.y * d.y;
     w.gravity += f_grav.x * d.x + f_grav.y * d.y;
+    w.boundary += (f_bnd.x * v.x + f_bnd.y * v.y) * dt;  // the dashpot's power at the velocity it acted on
   }
 };
 

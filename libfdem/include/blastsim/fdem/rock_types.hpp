@@ -11,8 +11,8 @@ namespace blastsim::fdem {
 //! Values of RockSolver::edge_exposed(): not exposed, a mesh boundary edge, a face of a broken joint.
 inline constexpr std::uint8_t kEdgeInside = 0, kEdgeBoundary = 1, kEdgeCrackFace = 2;
 
-//! Kinds of work accumulated per node: pressure, joint, contact, support, gravity.
-inline constexpr int kWorkKinds = 5;
+//! Kinds of work accumulated per node: pressure, joint, contact, support, gravity, viscous boundary.
+inline constexpr int kWorkKinds = 6;
 
 //! Numerical parameters of the rock model (the physical ones are in RockMaterial).
 struct RockOptions {
@@ -36,7 +36,8 @@ struct RockEnergies {
   double contact_work = 0;         //!< work done on contacts (penalty energy + friction)
   double friction_dissipated = 0;  //!< of which dissipated by Coulomb friction
   double damping_dissipated = 0;   //!< by the triangles' viscous damping
-  double external_work = 0;        //!< of pressures, gravity and prescribed-velocity supports
+  double external_work = 0;        //!< of pressures, gravity, prescribed-velocity supports and viscous boundaries
+  double boundary_work = 0;        //!< of the viscous boundaries alone (<= 0: minus the energy radiated out)
   double pressure_work = 0;        //!< of the edge pressures alone (in a coupled run: the gas's work on the rock)
   int broken_joints = 0;
   double crack_length = 0;         //!< total length of broken joints [m]
