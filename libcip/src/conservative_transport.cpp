@@ -49,7 +49,8 @@ void GasSolver::transport_conservatively(double dt) {
                                        make_field_view(a_->solid_work_v, sh), g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy,
                                        options_.limiter});
   for_each_cell("cip.transport.energy", 0, g.nx, 0, g.ny,
-                EnergyUpdateKernel{v.now, v.active, rho_e, Du, Dv, make_field_view(a_->positivity_heat, sh), g.nx, g.ny, px, py});
+                EnergyUpdateKernel{v.now, v.active, rho_e, Du, Dv, make_field_view(a_->positivity_heat, sh), g.nx, g.ny, px, py,
+                                   mat, m});
 }
 
 }  // namespace blastsim::cip

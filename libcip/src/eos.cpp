@@ -43,6 +43,34 @@ EquationOfState EquationOfState::jwl_products(const JwlParameters& p) {
   return e;
 }
 
+ChapmanJouguet chapman_jouguet(const JwlParameters& p) {
+  const auto slope = [&](double V) {  // p_s'(V)
+    return -p.R1 * p.A * std::exp(-p.R1 * V) - p.R2 * p.B * std::exp(-p.R2 * V) -
+           (1.0 + p.omega) * p.C * std::pow(V, -(2.0 + p.omega));
+  };
+  const auto tangency = [&](double V) { return p.isentrope_pressure(V) + (1.0 - V) * slope(V); };
+  // p_s > 0 at V = 1, so the condition is positive there; step down to the first sign change.
+  double hi = 1.0, lo = 1.0;
+  while (tangency(lo) > 0.0) {
+    hi = lo;
+    lo -= 0.01;
+    if (lo <= 0.01) throw InputError("JWL parameters: no Chapman-Jouguet point (the isentrope never meets a Rayleigh "
+                                     "line tangentially for V in (0, 1)); give detonation_velocity and "
+                                     "detonation_energy");
+  }
+  for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (tangency(mid) > 0.0 ? hi : lo) = mid;
+  }
+  ChapmanJouguet cj;
+  cj.relative_volume = 0.5 * (lo + hi);
+  const double V = cj.relative_volume;
+  cj.pressure = p.isentrope_pressure(V);
+  cj.detonation_velocity = std::sqrt(cj.pressure / (p.rho0 * (1.0 - V)));
+  cj.detonation_energy = p.isentrope_energy(V) - 0.5 * cj.pressure * (1.0 - V);
+  return cj;
+}
+
 const JwlPreset& EquationOfState::jwl_preset(const char* name) {
   std::string known;
   for (const JwlPreset& preset : kJwlPresets) {

@@ -38,6 +38,21 @@ std::vector<int> boundary_slots(const FdemTopology& topo, const std::vector<std:
   return slots;
 }
 
+void check_holes(const std::vector<Circle>& holes, double gap, const std::string& what) {
+  for (std::size_t k = 0; k < holes.size(); ++k) {
+    if (!(holes[k].radius > 0))
+      throw InputError(what + ": hole " + std::to_string(k) + " has radius " + std::to_string(holes[k].radius) +
+                       " m; it must be > 0");
+    for (std::size_t l = 0; l < k; ++l) {
+      const double d = std::hypot(holes[k].center[0] - holes[l].center[0], holes[k].center[1] - holes[l].center[1]);
+      if (d < holes[k].radius + holes[l].radius + gap)
+        throw InputError(what + ": holes " + std::to_string(l) + " and " + std::to_string(k) + " overlap or touch (centres " +
+                         std::to_string(d) + " m apart, radii " + std::to_string(holes[l].radius) + " and " +
+                         std::to_string(holes[k].radius) + " m)");
+    }
+  }
+}
+
 #if defined(BLASTSIM_HAVE_GMSH)
 
 bool gmsh_available() { return true; }
@@ -246,6 +261,64 @@ NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, d
   });
 }
 
+namespace {
+//! Cuts `holes` out of the surface `outer`, embeds `embedded` and meshes; curves named by `outer_name`
+//! (a bounding-box classifier) unless they are the rim of hole k, named "hole<k>".
+template <class OuterName>
+NamedMesh mesh_with_holes(int outer, const std::vector<Circle>& holes, double h, const std::vector<Segment>& embedded,
+                          OuterName outer_name, const std::string& what) {
+  gmsh::vectorpair tools, out;
+  for (const Circle& c : holes) tools.push_back({2, gmsh::model::occ::addDisk(c.center[0], c.center[1], 0, c.radius, c.radius)});
+  std::vector<gmsh::vectorpair> map;
+  gmsh::model::occ::cut({{2, outer}}, tools, out, map);
+  embed_segments(out, embedded);
+  return mesh_shape(h, [&](double a, double b, double c, double d) {
+    for (std::size_t k = 0; k < holes.size(); ++k) {
+      const double tol = 1e-3 * holes[k].radius + 1e-9;
+      if (std::fabs(0.5 * (a + c) - holes[k].center[0]) < tol && std::fabs(0.5 * (b + d) - holes[k].center[1]) < tol &&
+          std::fabs(0.5 * (c - a) - holes[k].radius) < 1e-2 * holes[k].radius)
+        return "hole" + std::to_string(k);
+    }
+    return outer_name(a, b, c, d);
+  }, what);
+}
+}  // namespace
+
+NamedMesh gmsh_rectangle_with_holes(double x0, double y0, double x1, double y1, const std::vector<Circle>& holes,
+                                    double h, const std::vector<Segment>& embedded) {
+  const std::string what = "rectangle-with-holes mesh";
+  require_size(h, what.c_str());
+  if (!(x1 > x0) || !(y1 > y0)) throw InputError(what + ": need x1 > x0 and y1 > y0");
+  check_holes(holes, 0.5 * h, what);
+  for (std::size_t k = 0; k < holes.size(); ++k) {
+    const Circle& c = holes[k];
+    if (c.center[0] - c.radius < x0 + 0.5 * h || c.center[0] + c.radius > x1 - 0.5 * h ||
+        c.center[1] - c.radius < y0 + 0.5 * h || c.center[1] + c.radius > y1 - 0.5 * h)
+      throw InputError(what + ": hole " + std::to_string(k) + " (centre " + std::to_string(c.center[0]) + ", " +
+                       std::to_string(c.center[1]) + " m, radius " + std::to_string(c.radius) +
+                       " m) does not lie inside the rectangle with half an element to spare");
+  }
+  return guarded(what, [&] {
+    return mesh_with_holes(gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0), holes, h, embedded,
+                           [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
+                           what);
+  });
+}
+
+NamedMesh gmsh_disc_with_holes(double cx, double cy, double r, const std::vector<Circle>& holes, double h,
+                               const std::vector<Segment>& embedded) {
+  const std::string what = "disc-with-holes mesh";
+  require_size(h, what.c_str());
+  if (!(r > 0)) throw InputError(what + ": radius " + std::to_string(r) + " m must be > 0");
+  check_holes(holes, 0.5 * h, what);
+  for (std::size_t k = 0; k < holes.size(); ++k)
+    if (std::hypot(holes[k].center[0] - cx, holes[k].center[1] - cy) + holes[k].radius > r - 0.5 * h)
+      throw InputError(what + ": hole " + std::to_string(k) + " does not lie inside the disc with half an element to spare");
+  return guarded(what, [&] {
+    return mesh_with_holes(gmsh::model::occ::addDisk(cx, cy, 0, r, r), holes, h, embedded,
+                           [](double, double, double, double) { return std::string("outer"); }, what);
+  });
+}
 
 #else  // no Gmsh in this build
 
@@ -262,6 +335,13 @@ NamedMesh gmsh_disc(double, double, double, double, const std::vector<Segment>&)
 NamedMesh gmsh_disc_with_hole(double, double, double, double, double, const std::vector<Segment>&) { no_gmsh("disc-with-hole mesh"); }
 NamedMesh gmsh_rectangle_with_hole(double, double, double, double, double, double, double, double) {
   no_gmsh("rectangle-with-hole mesh");
+}
+NamedMesh gmsh_rectangle_with_holes(double, double, double, double, const std::vector<Circle>&, double,
+                                    const std::vector<Segment>&) {
+  no_gmsh("rectangle-with-holes mesh");
+}
+NamedMesh gmsh_disc_with_holes(double, double, double, const std::vector<Circle>&, double, const std::vector<Segment>&) {
+  no_gmsh("disc-with-holes mesh");
 }
 
 #endif

@@ -23,8 +23,10 @@ CoupledBudget coupled_budget(const cip::GasSolver& gas, const fdem::RockSolver& 
                      e.damping_dissipated;
   b.immersed_face_work = gas.immersed_face_work();
   b.positivity_energy = gas.positivity_energy();
+  const ChargeTotals& q = b.coupling.charges;  // what burning put into the cells, less what they held
+  b.charge_energy = q.detonation_energy - q.replaced_energy;
   b.residual = now - (initial + b.other_external_work + b.coupling.transitions.energy_created + b.immersed_face_work +
-                      b.positivity_energy);
+                      b.positivity_energy + b.charge_energy);
   return b;
 }
 

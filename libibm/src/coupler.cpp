@@ -13,7 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace blastsim::ibm {
 
@@ -32,6 +34,11 @@ struct CouplerArrays {
   DeviceVector<int> junction_cell, handover_cell, keys, order;
   DeviceVector<ChannelConserved> handover;
   DeviceVector<double> load_factor;  // per segment: crack_width()'s dw_dopening
+  // charges (set_charges): per cell (i + nx j) its charge or -1 and its lighting time (params), whether it
+  // burnt, and its ledger (4 per cell: products mass, detonation energy, replaced mass and energy)
+  DeviceVector<int> charge_of_cell;
+  DeviceVector<double> burn_time, charge_ledger;
+  DeviceVector<std::uint8_t> burnt;
 };
 }  // namespace detail
 
@@ -59,6 +66,12 @@ void GasRockCoupler::rock_to_gas() {
   const fdem::RockView rock = rock_.view();
   const Field2D<int> uo = make_field_view(a_->u_owner, sh), vo = make_field_view(a_->v_owner, sh);
   for_each_index("ibm.cover", rock.triangles, CoverKernel{rock, g, uo, vo});
+  const double t = gas_.time();
+  const ChargeCells charge_cells{device_ptr(a_->charge_of_cell), device_ptr(a_->burn_time), g.nx, g.ny};
+  if (!charges_.empty()) {
+    for_each_cell("ibm.charge.cover.u", 0, g.nx + 1, 0, g.ny, ChargeCoverKernel{charge_cells, 0, t, uo});
+    for_each_cell("ibm.charge.cover.v", 0, g.nx, 0, g.ny + 1, ChargeCoverKernel{charge_cells, 1, t, vo});
+  }
   const cip::ImmersedBoundaryView ib = gas_.immersed_boundary();
   for_each_cell("ibm.face_velocity.u", 0, g.nx + 1, 0, g.ny, ImposedVelocityKernel{rock, g, 0, uo, ib.u_prescribed, ib.u_imposed});
   for_each_cell("ibm.face_velocity.v", 0, g.nx, 0, g.ny + 1, ImposedVelocityKernel{rock, g, 1, vo, ib.v_prescribed, ib.v_imposed});
@@ -76,6 +89,12 @@ void GasRockCoupler::rock_to_gas() {
   for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny,
                 ApplyTransitionKernel{fresh, changed, rho_next, e_next, ib.u_imposed, ib.v_imposed, ib.cell_active, s,
                                       two, next, m});
+  // Charge cells whose lighting time has come burn, from the second call on: the first call's state is the
+  // run's initial state, and the budget counts what burning adds.
+  if (!charges_.empty() && masks_set_)
+    for_each_cell("ibm.charge.burn", 0, g.nx, 0, g.ny,
+                  ChargeBurnKernel{charge_cells, device_ptr(a_->burnt), device_ptr(a_->charge_ledger), t, g.cell_area(),
+                                   products_, s, m});
   masks_set_ = true;
   gas_.apply_boundaries();
 }
@@ -112,6 +131,99 @@ void GasRockCoupler::enable_crack_gas(const CrackGasOptions& options) {
   a_->load_factor.assign(segments, 1.0);
   a_->keys.assign(junctions + segments, 0);
   a_->order.assign(junctions + segments, 0);
+}
+
+void GasRockCoupler::set_charges(const std::vector<Charge>& charges, const ChargeProducts& products) {
+  if (!gas_.materials().two)
+    throw InputError("charges: the gas has no detonation products (GasMaterials::two is off); give the explosive");
+  if (!(products.density > 0) || !std::isfinite(products.specific_energy))
+    throw InputError("charges: the products' state needs a positive density and a finite energy");
+  const cip::GasGrid g = gas_.grid();
+  const index_t cells = static_cast<index_t>(g.nx) * g.ny;
+  std::vector<int> owner(cells, -1);
+  std::vector<double> burn(cells, 0.0);
+  for (std::size_t k = 0; k < charges.size(); ++k) {
+    const Charge& c = charges[k];
+    const std::string name = "charge " + std::to_string(k);
+    if (!(c.radius > 0) || !(c.radius <= c.hole_radius))
+      throw InputError(name + ": radius " + std::to_string(c.radius) + " m must be > 0 and <= the hole radius " +
+                       std::to_string(c.hole_radius) + " m");
+    if (c.initiation == Initiation::point && !(c.detonation_velocity > 0))
+      throw InputError(name + ": a point initiation needs a detonation velocity > 0");
+    if (!(c.initiation_time >= 0)) throw InputError(name + ": initiation time must be >= 0 s");
+    int count = 0;
+    const int i0 = std::max(0, static_cast<int>(std::floor((c.center[0] - c.radius - g.x_min) / g.dx)));
+    const int i1 = std::min(g.nx - 1, static_cast<int>(std::ceil((c.center[0] + c.radius - g.x_min) / g.dx)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((c.center[1] - c.radius - g.y_min) / g.dy)));
+    const int j1 = std::min(g.ny - 1, static_cast<int>(std::ceil((c.center[1] + c.radius - g.y_min) / g.dy)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const double x = g.x_min + (i + 0.5) * g.dx, y = g.y_min + (j + 0.5) * g.dy;
+        if (std::hypot(x - c.center[0], y - c.center[1]) > c.radius) continue;
+        const index_t cell = static_cast<index_t>(j) * g.nx + i;
+        if (owner[cell] >= 0)
+          throw InputError(name + " and charge " + std::to_string(owner[cell]) + " overlap (they share cell " +
+                           std::to_string(i) + ", " + std::to_string(j) + ")");
+        owner[cell] = static_cast<int>(k);
+        burn[cell] = lighting_time(c, x, y);
+        ++count;
+      }
+    if (count == 0)
+      throw InputError(name + ": radius " + std::to_string(c.radius) + " m holds no cell centre of the gas grid (cells " +
+                       std::to_string(g.dx) + " m): refine the grid");
+  }
+  charges_ = charges;
+  products_ = products;
+  copy_from_host(a_->charge_of_cell, owner);
+  copy_from_host(a_->burn_time, burn);
+  a_->burnt.assign(cells, 0);
+  a_->charge_ledger.assign(4 * cells, 0.0);
+}
+
+std::vector<double> GasRockCoupler::charge_pressures() const {
+  const cip::GasGrid g = gas_.grid();
+  const cip::GasMaterials mat = gas_.materials();
+  const cip::MaterialReadView m = gas_.material_fields();
+  const cip::GasStateView s = gas_.state();
+  const Field2D<const std::uint8_t> active = gas_.immersed_boundary().cell_active;
+  std::vector<double> out;
+  for (const Charge& c : charges_) {
+    const int i0 = std::max(0, static_cast<int>(std::floor((c.center[0] - c.hole_radius - g.x_min) / g.dx)));
+    const int i1 = std::min(g.nx - 1, static_cast<int>(std::ceil((c.center[0] + c.hole_radius - g.x_min) / g.dx)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((c.center[1] - c.hole_radius - g.y_min) / g.dy)));
+    const int j1 = std::min(g.ny - 1, static_cast<int>(std::ceil((c.center[1] + c.hole_radius - g.y_min) / g.dy)));
+    const int ni = i1 - i0 + 1;
+    const double cx = c.center[0], cy = c.center[1], r = c.hole_radius;
+    const Vec2Sum sum = reduce_sum("ibm.charge.pressure", static_cast<index_t>(ni) * (j1 - j0 + 1), Vec2Sum{0, 0},
+                                   [=] BLAST_HD(index_t k) {
+                                     const int i = i0 + static_cast<int>(k % ni), j = j0 + static_cast<int>(k / ni);
+                                     const double x = g.x_min + (i + 0.5) * g.dx - cx, y = g.y_min + (j + 0.5) * g.dy - cy;
+                                     if (!active(i, j) || x * x + y * y > r * r) return Vec2Sum{0, 0};
+                                     return Vec2Sum{cip::cell_pressure(mat, m, s.rho.f(i, j), s.e.f(i, j), i, j), 1.0};
+                                   });
+    out.push_back(sum.y > 0 ? sum.x / sum.y : mat_ambient_pressure());
+  }
+  return out;
+}
+
+std::vector<double> GasRockCoupler::charge_energies() const {
+  std::vector<double> out;
+  const int* owner = device_ptr(a_->charge_of_cell);
+  const double* led = device_ptr(a_->charge_ledger);
+  const index_t cells = static_cast<index_t>(a_->charge_of_cell.size());
+  for (std::size_t k = 0; k < charges_.size(); ++k) {
+    const int kk = static_cast<int>(k);
+    out.push_back(reduce_sum("ibm.charge.energy", cells, 0.0,
+                             [=] BLAST_HD(index_t c) { return owner[c] == kk ? led[4 * c + 1] : 0.0; }));
+  }
+  return out;
+}
+
+double GasRockCoupler::next_initiation(double t) const {
+  double next = std::numeric_limits<double>::infinity();
+  for (const Charge& c : charges_)
+    if (c.initiation_time > t) next = std::min(next, c.initiation_time);
+  return next;
 }
 
 void GasRockCoupler::crack_geometry() {
@@ -177,6 +289,20 @@ CouplingDiagnostics GasRockCoupler::diagnostics() const {
   d.transitions.mass_created = total(2);
   d.transitions.energy_created = total(3);
   if (crack_) d.crack_gas = true, d.crack = crack_->totals(mat_ambient_pressure());
+  if (!charges_.empty()) {
+    const double* cl = device_ptr(a_->charge_ledger);
+    const std::uint8_t* burnt = device_ptr(a_->burnt);
+    const index_t cells = static_cast<index_t>(a_->burnt.size());
+    auto charge_total = [&](int c) {
+      return reduce_sum("ibm.charge.ledger", cells, 0.0, [=] BLAST_HD(index_t k) { return cl[4 * k + c]; });
+    };
+    d.charges.products_mass = charge_total(0);
+    d.charges.detonation_energy = charge_total(1);
+    d.charges.replaced_mass = charge_total(2);
+    d.charges.replaced_energy = charge_total(3);
+    d.charges.burnt_cells = std::lround(
+        reduce_sum("ibm.charge.burnt", cells, 0.0, [=] BLAST_HD(index_t k) { return burnt[k] ? 1.0 : 0.0; }));
+  }
   return d;
 }
 
@@ -219,6 +345,10 @@ void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
   w.value("ibm.masks_set", static_cast<int>(masks_set_));
   w.array("ibm.ledger", a_->ledger);
   if (crack_) crack_->write_checkpoint(w);
+  if (!charges_.empty()) {
+    w.array("ibm.charge.burnt", a_->burnt);
+    w.array("ibm.charge.ledger", a_->charge_ledger);
+  }
 }
 
 void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
@@ -227,6 +357,12 @@ void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
   masks_set_ = masks == 1;
   r.array("ibm.ledger", a_->ledger, a_->ledger.size());
   if (crack_) crack_->read_checkpoint(r);
+  if (!charges_.empty()) {
+    r.array("ibm.charge.burnt", a_->burnt, a_->burnt.size());
+    for (std::uint8_t b : to_host(a_->burnt))
+      if (b > 1) r.fail("ibm.charge.burnt", "a flag is not 0 or 1");
+    r.array("ibm.charge.ledger", a_->charge_ledger, a_->charge_ledger.size());
+  }
 }
 
 }  // namespace blastsim::ibm

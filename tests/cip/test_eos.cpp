@@ -6,6 +6,7 @@
 #include "catch.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 using namespace blastsim;
@@ -92,4 +93,26 @@ TEST_CASE("G10 JWL parameters: bad values are refused by name", "[cip][G10][eos]
   CHECK(refused(p, "A ="));
   CHECK_NOTHROW(cip::EquationOfState::jwl_products(anfo));
   CHECK_THROWS_AS(cip::EquationOfState::jwl_preset("dynamite"), InputError);
+}
+
+TEST_CASE("G10 Chapman-Jouguet state from a JWL set: TNT against the LLNL handbook", "[cip][G10][eos]") {
+  // Dobratz and Crawford (1985), LLNL Explosives Handbook UCRL-52997, JWL table for TNT at 1630 kg/m3:
+  // D = 6930 m/s, p_CJ = 21.0 GPa, E0 = 7.0 GPa (0.070 Mbar cc/cc). The set was fitted with that CJ state, so
+  // the tangency of its isentrope to the Rayleigh line must give it back.
+  const cip::JwlParameters tnt = cip::EquationOfState::jwl_preset("TNT").p;
+  const cip::ChapmanJouguet cj = cip::chapman_jouguet(tnt);
+  std::printf("G10 CJ state of TNT from its JWL set: V_CJ %.4f, D %.1f m/s (6930), p_CJ %.3f GPa (21.0), E0 %.4f GPa "
+              "(7.0)\n", cj.relative_volume, cj.detonation_velocity, cj.pressure / 1e9, cj.detonation_energy / 1e9);
+  CHECK(std::fabs(cj.detonation_velocity / 6930.0 - 1) < 0.005);
+  CHECK(std::fabs(cj.pressure / 21.0e9 - 1) < 0.005);
+  CHECK(std::fabs(cj.detonation_energy / 7.0e9 - 1) < 0.005);
+  // The state is on the Rayleigh line and the isentrope: p_CJ = rho0 D^2 (1 - V_CJ).
+  CHECK(std::fabs(cj.pressure - tnt.rho0 * std::pow(cj.detonation_velocity, 2) * (1 - cj.relative_volume)) <
+        1e-9 * cj.pressure);
+  const cip::ChapmanJouguet anfo = cip::chapman_jouguet(cip::EquationOfState::jwl_preset("ANFO").p);
+  std::printf("G10 CJ state of ANFO (Sanchidrian et al. 2015 set): V_CJ %.4f, D %.1f m/s, p_CJ %.3f GPa, E0 %.4f GPa "
+              "(%.3f MJ/kg)\n", anfo.relative_volume, anfo.detonation_velocity, anfo.pressure / 1e9,
+              anfo.detonation_energy / 1e9, anfo.detonation_energy / 800.0 / 1e6);
+  CHECK(anfo.relative_volume > 0.5);
+  CHECK(anfo.relative_volume < 1.0);
 }

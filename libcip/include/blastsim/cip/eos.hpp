@@ -35,6 +35,21 @@ struct JwlParameters {
   }
 };
 
+//! The Chapman-Jouguet state of the explosive whose products a JWL set describes, derived from the principal
+//! isentrope alone: the isentrope through the CJ point is tangent there to the Rayleigh line
+//! p = rho0 D^2 (1 - V), so V_CJ solves p_s(V) + (1 - V) p_s'(V) = 0; then D^2 = p_s(V_CJ) / (rho0 (1 - V_CJ)),
+//! and the Hugoniot energy relation E_CJ - E0 = p_CJ (1 - V_CJ) / 2 with E_CJ = E_s(V_CJ) gives the detonation
+//! energy E0 per unit initial volume (Fickett and Davis 1979, Detonation, ch. 2; Lee, Hornig and Kury 1968,
+//! UCRL-50422, on fitting JWL to the cylinder test with the CJ state as a constraint).
+struct ChapmanJouguet {
+  double relative_volume = 0;      //!< V_CJ = rho0 / rho_CJ [-]
+  double detonation_velocity = 0;  //!< D [m/s]
+  double pressure = 0;             //!< p_CJ [Pa]
+  double detonation_energy = 0;    //!< E0 [J/m3] per unit volume of unreacted explosive
+};
+//! Solves the tangency condition by bisection on (0, 1); throws InputError when the set has no CJ point there.
+ChapmanJouguet chapman_jouguet(const JwlParameters& p);
+
 //! The published parameter sets (presets of the input's `explosive` key).
 struct JwlPreset {
   const char* name;

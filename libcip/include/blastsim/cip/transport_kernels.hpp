@@ -346,6 +346,13 @@ struct MomentumKernel {
   }
 };
 
+//! Lowest pressure [Pa] the transport leaves in a cell with detonation products. Conservative transport of
+//! the mixture's rho e next to alpha and m1 does not keep each material on its own curve: beside the contact
+//! of products expanding into air (a decoupled charge), mixed cells were seen to lose more thermal energy
+//! than any isentrope allows and reach negative pressures (docs/gas-solver.md, "Two materials"). Such a cell
+//! gets the heat that lifts it to this pressure, counted in GasSolver::positivity_energy() like the bound below.
+inline constexpr double kPressureFloor = 1.0;
+
 //! Largest fraction of a cell's internal energy that the kinetic-energy correction may take in one step.
 //! In a near-vacuum rarefaction (Toro's test 2) the faces beside an emptying cell gain more kinetic energy
 //! from the momentum transport than they carried in, and the whole correction would leave the cell a
@@ -354,8 +361,10 @@ inline constexpr double kMaxCorrectionFraction = 0.5;
 
 //! Internal energy of a cell: flux-form rho e plus half the kinetic energy dissipated on each of its four
 //! faces (all of it for a face on the outer boundary or next to an inactive cell: no gas cell on the other
-//! side takes the other half). A net loss is bounded by kMaxCorrectionFraction of rho e; the part not
-//! taken is summed in `added` [J/m3] (GasSolver::positivity_energy()).
+//! side takes the other half). A net loss is bounded by kMaxCorrectionFraction of the cell's thermal energy
+//! rho e - sum_k alpha_k K_k(rho_k) = p xi >= 0 (GasMaterials: the energy above the materials' zero-pressure
+//! curves; rho e itself for air), so the correction never drives the pressure negative; the part not taken is
+//! summed in `added` [J/m3] (GasSolver::positivity_energy()).
 struct EnergyUpdateKernel {
   GasStateView n;
   Field2D<const std::uint8_t> active;
@@ -363,6 +372,8 @@ struct EnergyUpdateKernel {
   Field2D<double> added;
   int nx, ny;
   bool periodic_x, periodic_y;
+  GasMaterials mat;
+  MaterialReadView m;  // read when mat.two (alpha and m1 after this step's transport)
   BLAST_HD void operator()(int i, int j) const {
     if (!active(i, j)) {
       n.e.f(i, j) = rho_e(i, j) / n.rho.f(i, j);
@@ -376,10 +387,20 @@ struct EnergyUpdateKernel {
     const double wb = (!periodic_y && j == 0) || !active(i, jb) ? 1.0 : 0.5;
     const double wt = (!periodic_y && j + 1 == ny) || !active(i, jt) ? 1.0 : 0.5;
     const double heat = wl * Du(i, j) + wr * Du(ir, j) + wb * Dv(i, j) + wt * Dv(i, jt);
-    // (Products' rho e may be negative: no bound there.)
-    const double floor = rho_e(i, j) > 0.0 ? -kMaxCorrectionFraction * rho_e(i, j) : -INFINITY;
+    const bool mixed = mat.two && m.alpha(i, j) > GasMaterials::kMinFraction;
+    const double offsets = mixed ? GasMaterials::offset(mat.products, m.alpha(i, j), m.m1(i, j)) +
+                                       GasMaterials::offset(mat.air, 1.0 - m.alpha(i, j), n.rho.f(i, j) - m.m1(i, j))
+                                 : 0.0;
+    const double thermal = rho_e(i, j) - offsets;  // p xi [J/m3]
+    const double floor = thermal > 0.0 ? -kMaxCorrectionFraction * thermal : (mat.two ? 0.0 : -INFINITY);
     if (heat < floor) added(i, j) += floor - heat;
-    n.e.f(i, j) = (rho_e(i, j) + (heat < floor ? floor : heat)) / n.rho.f(i, j);
+    double energy = rho_e(i, j) + (heat < floor ? floor : heat);
+    if (mixed) {  // products whose thermal energy the transport took below kPressureFloor (see there)
+      const double xi = m.alpha(i, j) / mat.products.gruneisen() + (1.0 - m.alpha(i, j)) / mat.air.gruneisen();
+      const double lack = xi * kPressureFloor - (energy - offsets);
+      if (lack > 0.0) added(i, j) += lack, energy += lack;
+    }
+    n.e.f(i, j) = energy / n.rho.f(i, j);
   }
 };
 

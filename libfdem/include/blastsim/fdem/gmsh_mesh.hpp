@@ -38,6 +38,22 @@ NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, dou
 //! top, hole.
 NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, double cx, double cy, double r_hole,
                                    double h);
+//! A circle [m]: a blasthole of a multi-hole mesh.
+struct Circle {
+  std::array<double, 2> center;
+  double radius;
+};
+//! Throws InputError naming the first hole that is not strictly inside `inside` (a predicate on a circle) or that
+//! overlaps another (their rims closer than `gap` [m]); `what` names the mesh in the message.
+void check_holes(const std::vector<Circle>& holes, double gap, const std::string& what);
+//! Rectangle [x0, x1] x [y0, y1] with any number of circular holes (a bench section with its blastholes);
+//! groups left, right, bottom, top and hole0, hole1, ... in the order given. `embedded`: segments the mesh
+//! follows (pre-existing joints). Throws InputError for a hole that leaves the rectangle or overlaps another.
+NamedMesh gmsh_rectangle_with_holes(double x0, double y0, double x1, double y1, const std::vector<Circle>& holes,
+                                    double h, const std::vector<Segment>& embedded = {});
+//! Disc of radius r centred at (cx, cy) with any number of circular holes; groups outer and hole0, hole1, ...
+NamedMesh gmsh_disc_with_holes(double cx, double cy, double r, const std::vector<Circle>& holes, double h,
+                               const std::vector<Segment>& embedded = {});
 //! Reads a Gmsh mesh file as data (read_msh_file()); refuses Gmsh scripts (.geo), which could run commands.
 //! Needs no Gmsh. Throws InputError for a missing, unreadable or malformed file, or one with no triangles.
 NamedMesh read_gmsh_file(const std::string& path);

@@ -18,9 +18,10 @@ struct CoupledBudget {
   double other_external_work = 0;  //!< work on the rock of loads other than the gas (supports, gravity)
   double immersed_face_work = 0;  //!< energy the rock's moving faces gave the gas (GasSolver::immersed_face_work)
   double positivity_energy = 0;   //!< energy the gas transport's positivity bound added (GasSolver::positivity_energy)
+  double charge_energy = 0;       //!< detonation energy of the burnt charge cells less the gas they held (ChargeTotals)
   //! (gas energy (grid and cracks) + gas out + rock kinetic + strain + joint work + contact work + damping) - (initial energy +
-  //! other external work + energy the cell transitions created + immersed-face work + positivity energy): zero
-  //! for an exact budget.
+  //! other external work + energy the cell transitions created + immersed-face work + positivity energy + charge
+  //! energy): zero for an exact budget.
   double residual = 0;
 };
 

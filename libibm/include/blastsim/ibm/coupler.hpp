@@ -9,6 +9,7 @@
 
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/ibm/charges.hpp"
 #include "blastsim/ibm/crack_gas.hpp"
 
 #include <algorithm>
@@ -35,6 +36,7 @@ struct CouplingDiagnostics {
   CellTransitions transitions;
   bool crack_gas = false;  //!< the cracks carry their own gas (enable_crack_gas())
   CrackGasTotals crack;    //!< the gas in the cracks (crack_gas only)
+  ChargeTotals charges;    //!< what the charges' burnt cells put into the gas (set_charges())
 };
 
 //! Rock steps that fill a gas step of dt [s] without exceeding the rock step rock_dt [s] (rock subcycling;
@@ -102,6 +104,24 @@ class GasRockCoupler {
   double crack_mouth_pressure(std::array<double, 2> center, double radius) const;
   CrackGas* crack_gas() { return crack_.get(); }
 
+  //! Places explosive charges in the gas (docs/coupling.md "Charges"): the cells whose centres lie in a charge's
+  //! circle are its cells; until their lighting time (lighting_time()) they are a solid at rest that keeps its
+  //! volume, then rock_to_gas() burns them: products at `products`' density and energy, the change recorded in
+  //! the charge ledger (diagnostics().charges, the energy budget). Call before the first rock_to_gas() and
+  //! before read_checkpoint(). Throws InputError: the gas has no products material, a charge larger than its
+  //! hole or without a cell centre inside it, two charges sharing a cell, a point initiation without a positive
+  //! detonation velocity, a bad products state.
+  void set_charges(const std::vector<Charge>& charges, const ChargeProducts& products);
+  const std::vector<Charge>& charges() const { return charges_; }
+  //! Per charge: the borehole pressure [Pa], the mean pressure of the active cells whose centres lie within
+  //! its hole radius (the ambient pressure when none is active).
+  std::vector<double> charge_pressures() const;
+  //! Per charge: its detonation energy released so far [J/m] (rho0 e0 times the area of its burnt cells).
+  std::vector<double> charge_energies() const;
+  //! The earliest initiation time of a charge later than t [s] (infinity when none): a stepper lands a step
+  //! on it, so that a charge fires at its time and not up to a step later.
+  double next_initiation(double t) const;
+
   //! Largest dt [s] that both solvers accept: min(gas Courant limit at `courant`, rock stable step).
   double stable_dt(double courant) const;
 
@@ -123,6 +143,8 @@ class GasRockCoupler {
   cip::GasPoint ambient_;
   bool masks_set_ = false;
   std::unique_ptr<CrackGas> crack_;
+  std::vector<Charge> charges_;
+  ChargeProducts products_;
   void crack_geometry();
   void crack_mouths();
   void apply_crack_deposits();

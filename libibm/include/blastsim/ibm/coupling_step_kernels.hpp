@@ -13,6 +13,7 @@
 #include "blastsim/core/field2d.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/ibm/charge_kernels.hpp"
 #include "blastsim/ibm/coupling_kernels.hpp"
 #include "blastsim/ibm/crack_gas_kernels.hpp"
 
@@ -61,7 +62,8 @@ struct CoverKernel {
   }
 };
 
-//! Imposed velocity of each face point from its covering triangle's nodes (linear shape functions).
+//! Imposed velocity of each face point from its covering triangle's nodes (linear shape functions); zero on the
+//! wall of an unburnt charge.
 struct ImposedVelocityKernel {
   fdem::RockView rock;
   cip::GasGrid g;
@@ -71,7 +73,8 @@ struct ImposedVelocityKernel {
   Field2D<double> imposed;
   BLAST_HD void operator()(int i, int j) const {
     const int t = owner(i, j);
-    prescribed(i, j) = t >= 0;
+    prescribed(i, j) = t != kNoOwner;
+    if (t == kChargeOwner) imposed(i, j) = 0.0;  // the wall of an unburnt charge, at rest
     if (t < 0) return;
     double x[3], y[3], w[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
     for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
@@ -83,12 +86,14 @@ struct ImposedVelocityKernel {
   }
 };
 
-//! A cell is inactive when its four face points are in rock (docs/coupling.md "Rock -> gas"): the new mask.
+//! A cell is inactive when its four face points are in rock or an unburnt charge (docs/coupling.md "Rock -> gas"):
+//! the new mask.
 struct NewMaskKernel {
   Field2D<const int> u_owner, v_owner;
   Field2D<std::uint8_t> new_active;
   BLAST_HD void operator()(int i, int j) const {
-    const bool covered = u_owner(i, j) >= 0 && u_owner(i + 1, j) >= 0 && v_owner(i, j) >= 0 && v_owner(i, j + 1) >= 0;
+    const bool covered = u_owner(i, j) != kNoOwner && u_owner(i + 1, j) != kNoOwner && v_owner(i, j) != kNoOwner &&
+                         v_owner(i, j + 1) != kNoOwner;
     new_active(i, j) = covered ? 0 : 1;
   }
 };
