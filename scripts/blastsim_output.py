@@ -1,13 +1,14 @@
 """Readers of a blastsim run's output folder shared by the plotting scripts: CSV series as numpy columns,
-ParaView collections (.pvd) and VTK unstructured grids (.vtu). Imported by plot-single-hole.py and
-plot-analysis.py (they put this folder on sys.path); needs numpy and python3-vtk9.
+ParaView collections (.pvd), VTK unstructured grids (.vtu), the gas image (.vti), the rock's triangles and its
+cracks. Imported by plot-single-hole.py, plot-bench.py and plot-analysis.py (they put this folder on sys.path); needs numpy and python3-vtk9.
 """
 import csv
 import os
 import xml.etree.ElementTree as ET
 
 import numpy as np
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLUnstructuredGridReader
 
 
 def read_csv(path):
@@ -42,3 +43,40 @@ def read_grid(path):
     r.SetFileName(path)
     r.Update()
     return r.GetOutput()
+
+
+def read_gas(path):
+    """A gas snapshot (.vti): extent, pressure, speed and the active mask as 2-D arrays (rows along y)."""
+    r = vtkXMLImageDataReader()
+    r.SetFileName(path)
+    r.Update()
+    img = r.GetOutput()
+    nx, ny, _ = img.GetDimensions()
+    nx, ny = nx - 1, ny - 1
+    x0, y0, _ = img.GetOrigin()
+    dx, dy, _ = img.GetSpacing()
+    cd = img.GetCellData()
+    field = lambda name: vtk_to_numpy(cd.GetArray(name)).reshape(ny, nx, -1).squeeze()  # noqa: E731
+    vel = field("velocity")
+    return {
+        "extent": (x0, x0 + nx * dx, y0, y0 + ny * dy),
+        "pressure": field("pressure"),
+        "speed": np.hypot(vel[..., 0], vel[..., 1]),
+        "active": field("active"),
+    }
+
+
+def read_rock(path):
+    """A rock snapshot (.vtu): its triangles (n x 3 x 2 corners) and their most compressive principal stress."""
+    g = read_grid(path)
+    pts = vtk_to_numpy(g.GetPoints().GetData())[:, :2]
+    tris = pts.reshape(-1, 3, 2)  # FDEM: three own nodes per triangle, in order
+    return tris, vtk_to_numpy(g.GetCellData().GetArray("principal_min"))
+
+
+def read_cracks(path):
+    """A joints snapshot (.vtu): the broken joints as segments (n x 2 x 2)."""
+    g = read_grid(path)
+    pts = vtk_to_numpy(g.GetPoints().GetData())[:, :2].reshape(-1, 2, 2)
+    broken = vtk_to_numpy(g.GetCellData().GetArray("broken")).astype(bool)
+    return pts[broken]

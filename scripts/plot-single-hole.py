@@ -28,49 +28,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from blastsim_output import pvd_entries, read_csv, read_grid  # noqa: E402
-
-
-
-
-
-
-def read_gas(path):
-    r = vtkXMLImageDataReader()
-    r.SetFileName(path)
-    r.Update()
-    img = r.GetOutput()
-    nx, ny, _ = img.GetDimensions()
-    nx, ny = nx - 1, ny - 1
-    x0, y0, _ = img.GetOrigin()
-    dx, dy, _ = img.GetSpacing()
-    cd = img.GetCellData()
-    field = lambda name: vtk_to_numpy(cd.GetArray(name)).reshape(ny, nx, -1).squeeze()  # noqa: E731
-    vel = field("velocity")
-    return {
-        "extent": (x0, x0 + nx * dx, y0, y0 + ny * dy),
-        "pressure": field("pressure"),
-        "speed": np.hypot(vel[..., 0], vel[..., 1]),
-        "active": field("active"),
-    }
-
-
-
-
-def read_rock(path):
-    g = read_grid(path)
-    pts = vtk_to_numpy(g.GetPoints().GetData())[:, :2]
-    tris = pts.reshape(-1, 3, 2)  # FDEM: three own nodes per triangle, in order
-    return tris, vtk_to_numpy(g.GetCellData().GetArray("principal_min"))
-
-
-def read_cracks(path):
-    g = read_grid(path)
-    pts = vtk_to_numpy(g.GetPoints().GetData())[:, :2].reshape(-1, 2, 2)
-    broken = vtk_to_numpy(g.GetCellData().GetArray("broken")).astype(bool)
-    return pts[broken]
+from blastsim_output import pvd_entries, read_cracks, read_csv, read_gas, read_grid, read_rock  # noqa: E402
 
 
 def read_crack_gas(path):

@@ -29,13 +29,15 @@ cip::GasMaterials CaseConfig::materials() const {
   m.air = eos;
   m.products = explosive.value_or(eos);
   for (const GasRegion& r : regions) m.two = m.two || r.state.products_fraction > 0.0;
+  m.two = m.two || charges;
   return m;
 }
 
 namespace {
 
-//! [gas.explosive]: a preset (explosive = "ANFO") or the seven JWL parameters; checked by jwl_products().
-cip::EquationOfState read_explosive(TableReader& x) {
+//! [gas.explosive]: a preset (explosive = "ANFO") or the seven JWL parameters; checked by jwl_products(). Also
+//! the detonation velocity and energy of the explosive (given, or those of the JWL set's CJ state).
+cip::EquationOfState read_explosive(TableReader& x, CaseConfig& c) {
   cip::JwlParameters p;
   const char* keys[] = {"A", "B", "C", "R1", "R2", "w", "rho0"};
   if (x.has("preset")) {
@@ -54,12 +56,25 @@ cip::EquationOfState read_explosive(TableReader& x) {
     p.omega = x.number("w", "", Range::positive());
     p.rho0 = x.number("rho0", "kg/m3", Range::positive());
   }
-  x.finish();
+  cip::EquationOfState eos;
   try {
-    return cip::EquationOfState::jwl_products(p);
+    eos = cip::EquationOfState::jwl_products(p);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", x.path(), e.what()));
   }
+  cip::ChapmanJouguet cj;
+  const bool both = x.has("detonation_velocity") && x.has("detonation_energy");
+  try {
+    if (!both) cj = cip::chapman_jouguet(p);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", x.path(), e.what()));
+  }
+  c.detonation_velocity = x.number("detonation_velocity", "m/s", Range::positive(),
+                                   both ? std::optional<double>() : cj.detonation_velocity);
+  c.detonation_energy = x.number("detonation_energy", "J/kg", Range::positive(),
+                                 both ? std::optional<double>() : cj.detonation_energy / p.rho0);
+  x.finish();
+  return eos;
 }
 
 //! A gas state: density and exactly one of internal_energy / pressure, optional velocity.
@@ -126,7 +141,7 @@ void read_gas_sections(TableReader& root, CaseConfig& c, RockCaseConfig* rock) {
   ambient.finish();
   if (gas.has("explosive")) {
     TableReader x = gas.table("explosive");
-    c.explosive = read_explosive(x);
+    c.explosive = read_explosive(x, c);
   }
   for (TableReader& r : gas.table_array("region")) {
     GasRegion region;

@@ -45,6 +45,10 @@ struct CaseConfig {
   // [gas]
   cip::EquationOfState eos;                     //!< the air (and the only gas without an explosive)
   std::optional<cip::EquationOfState> explosive;  //!< [gas.explosive]: JWL detonation products
+  //! [gas.explosive]: the explosive itself (for [[charge]]): detonation velocity [m/s] and energy [J/kg], given
+  //! or derived from the Chapman-Jouguet state of the JWL set (cip::chapman_jouguet()).
+  double detonation_velocity = 0, detonation_energy = 0;
+  bool charges = false;  //!< the case has [[charge]] tables (their products need the second material)
   cip::GasSolverOptions solver;
   double courant = 0.1;  //!< [-] dt = courant / max signal rate, or the limit a fixed dt must respect
   cip::GasPoint ambient{};

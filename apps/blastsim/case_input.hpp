@@ -75,6 +75,12 @@ void read_gas_sections(TableReader& root, CaseConfig& c, RockCaseConfig* rock = 
 void read_rock_section(TableReader& root, RockCaseConfig& c);  //!< [rock], then [analysis]
 void read_analysis_section(TableReader& root, RockCaseConfig& c);  //!< [analysis] (after [rock]: its mesh sets defaults)
 void read_rock_probes(TableReader& probe, RockCaseConfig& c);      //!< [[probe.rock_point]] of the table [probe]
+//! [[charge]] of a coupled case (after [gas] and [rock]): the charges, their holes put first into the rock mesh's
+//! holes, the damage-zone holes defaulted to them; every error names the key.
+void read_charges(TableReader& root, CoupledCaseConfig& c);
+//! The holes of a rectangle_with_holes / disc_with_holes mesh: at least one, each inside the rock with half an
+//! element to spare, none overlapping; names[k] is hole k's key in messages.
+void check_mesh_holes(const RockMeshSpec& s, const std::vector<std::string>& names);
 
 //! Throws InputError unless `name` (used in file names) is letters, digits, '_' and '-'.
 void check_output_name(const std::string& kind, const std::string& name);

@@ -4,6 +4,7 @@
 
 #include "blastsim/cip/gas_types.hpp"
 #include "blastsim/ibm/blasthole_monitor.hpp"
+#include "blastsim/ibm/charges.hpp"
 #include "blastsim/ibm/crack_gas.hpp"
 #include "case_config.hpp"
 #include "rock_config.hpp"
@@ -38,6 +39,10 @@ struct CoupledCaseConfig {
   //! while its energy budget in a fragmenting blast is open (docs/coupling.md).
   bool crack_gas = false;
   ibm::CrackGasOptions crack_gas_options;
+  //! [[charge]]: explosive charges in the mesh's holes (docs/coupling.md "Charges"), and the state their
+  //! products start from ([gas.explosive]: rho0 and the detonation energy)
+  std::vector<ibm::Charge> charges;
+  ibm::ChargeProducts charge_products;
   std::vector<std::string> echo;
 };
 

@@ -12,7 +12,9 @@
 #include "run_loop.hpp"
 #include "rock_outputs.hpp"
 
+#include <cmath>
 #include <optional>
+#include <vector>
 
 namespace blastsim::app {
 
@@ -37,7 +39,7 @@ class CouplingSeries {
   }
 
   //! Writes one row (ibm::coupled_budget(): docs/validation.md S4); returns the budget residual relative to
-  //! the initial energy.
+  //! the initial energy plus what the charges released.
   double write() {
     const ibm::CoupledBudget b = ibm::coupled_budget(gas_, rock_, coupler_, initial_);
     const cip::GasTotals& g = b.gas;
@@ -48,15 +50,16 @@ class CouplingSeries {
                          gas_.steps(), gas_.time(), g.mass, g.internal_energy, g.kinetic_energy, b.gas_energy_out, e.kinetic,
                          e.strain, e.joint_work, e.fracture_dissipated, e.contact_work, e.damping_dissipated,
                          d.gas_work_on_rock, b.other_external_work, d.transitions.energy_created, b.residual,
-                         b.residual / initial_, d.gas_force_on_rock[0], d.gas_force_on_rock[1], e.broken_joints,
+                         b.residual / (initial_ + b.charge_energy), d.gas_force_on_rock[0], d.gas_force_on_rock[1], e.broken_joints,
                          e.crack_length, d.transitions.covered, d.transitions.uncovered, b.immersed_face_work,
                          d.crack.mass, d.crack.energy, d.crack.gas_segments, d.crack.wet_segments, d.crack.max_pressure);
+    row += fmt::format(",{:.9e}", d.charges.detonation_energy);
     for (const MonitorRegion& r : c_.regions) {
       const cip::GasTotals t = coupler_.gas_in(r.region);
       row += fmt::format(",{:.9e},{:.9e}", t.mass, t.total_energy());
     }
     file_.row(row);
-    return b.residual / initial_;
+    return b.residual / (initial_ + b.charge_energy);
   }
 
  private:
@@ -74,7 +77,7 @@ class CouplingSeries {
                     "transition_energy_J_per_m,budget_residual_J_per_m,budget_relative,gas_force_x_N_per_m,"
                     "gas_force_y_N_per_m,broken_joints,crack_length_m,cells_covered,cells_uncovered,"
                     "immersed_face_work_J_per_m,crack_gas_mass_kg_per_m,crack_gas_energy_J_per_m,crack_gas_segments,"
-                    "crack_wet_segments,crack_gas_pressure_max_Pa";
+                    "crack_wet_segments,crack_gas_pressure_max_Pa,charge_detonation_energy_J_per_m";
     for (const MonitorRegion& r : c.regions) h += fmt::format(",{0}_mass_kg_per_m,{0}_energy_J_per_m", r.name);
     return h;
   }
@@ -184,6 +187,73 @@ class BlastholeFiles {
   }
 };
 
+//! The charges' files ([[charge]]): charges.csv (borehole pressure and released energy of every charge) at
+//! every row of the coupling series, and their lines of summary.txt.
+class ChargeFiles {
+ public:
+  ChargeFiles(const CoupledCaseConfig& c, const ibm::GasRockCoupler& coupler, bool resume)
+      : c_(c), coupler_(coupler), peak_(c.charges.size(), 0.0), peak_time_(c.charges.size(), -1.0) {
+    if (c.charges.empty()) return;
+    std::string h = "time_s";
+    for (std::size_t k = 0; k < c.charges.size(); ++k)
+      h += fmt::format(",charge{0}_pressure_Pa,charge{0}_energy_J_per_m", k);
+    file_.emplace((make_output_dir(c.gas.output_directory) / "charges.csv").string(), h, resume);
+  }
+  void sample(double t) {
+    if (!file_) return;
+    const std::vector<double> p = coupler_.charge_pressures(), e = coupler_.charge_energies();
+    std::string row = fmt::format("{:.9e}", t);
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      row += fmt::format(",{:.6e},{:.9e}", p[k], e[k]);
+      if (p[k] > peak_[k]) peak_[k] = p[k], peak_time_[k] = t;
+    }
+    file_->row(row);
+  }
+  //! summary.txt lines: per charge its initiation, its peak borehole pressure and the energy it released.
+  std::string summary() const {
+    if (c_.charges.empty()) return {};
+    const std::vector<double> e = coupler_.charge_energies();
+    const ibm::ChargeProducts& q = c_.charge_products;
+    std::string out = fmt::format("charges: products start at {:g} kg/m3 and {:.4g} J/kg ({:.4g} Pa); borehole pressure = "
+                                  "mean over the hole's active cells (charges.csv)\n",
+                                  q.density, q.specific_energy,
+                                  c_.gas.explosive->pressure(q.density, q.specific_energy));
+    for (std::size_t k = 0; k < c_.charges.size(); ++k) {
+      const ibm::Charge& ch = c_.charges[k];
+      const double nominal = q.density * q.specific_energy * M_PI * ch.radius * ch.radius;
+      out += fmt::format("charge {}: hole [{:g}, {:g}] m, radius {:g} m, charge radius {:g} m; initiation {:.4e} s ({}); "
+                         "peak borehole pressure {:.4e} Pa at {:.4e} s; energy released {:.4e} J/m ({:.1f} % of rho0 e0 "
+                         "pi r^2)\n", k, ch.center[0], ch.center[1], ch.hole_radius, ch.radius, ch.initiation_time,
+                         ch.initiation == ibm::Initiation::point
+                             ? fmt::format("point at [{:g}, {:g}] m, D {:g} m/s", ch.point[0], ch.point[1],
+                                           ch.detonation_velocity)
+                             : std::string("constant volume"),
+                         peak_[k], peak_time_[k], e[k], 100 * e[k] / nominal);
+    }
+    return out;
+  }
+  void write_checkpoint(CheckpointWriter& w) {
+    w.value("out.charges.csv_size", file_ ? file_->size() : std::uint64_t{0});
+    w.host_array("out.charges.peak", peak_);
+    w.host_array("out.charges.peak_time", peak_time_);
+  }
+  void read_checkpoint(CheckpointReader& r) {
+    const std::uint64_t size = r.value<std::uint64_t>("out.charges.csv_size");
+    const std::vector<double> peak = r.host_array<double>("out.charges.peak"),
+                              when = r.host_array<double>("out.charges.peak_time");
+    if (peak.size() != peak_.size() || when.size() != peak_.size())
+      r.fail("out.charges.peak", "not one value per charge (a checkpoint of another case?)");
+    peak_ = peak, peak_time_ = when;
+    if (file_) file_->truncate_to(size);
+  }
+
+ private:
+  const CoupledCaseConfig& c_;
+  const ibm::GasRockCoupler& coupler_;
+  std::optional<CsvSeries> file_;
+  std::vector<double> peak_, peak_time_;  // per charge: the largest borehole pressure sampled [Pa] and when [s]
+};
+
 //! The case as the checkpoint records it: the resolved input, less the keys a restart may change.
 std::string checkpoint_case_text(const CoupledCaseConfig& c) {
   std::string text;
@@ -225,6 +295,7 @@ class CoupledStepper : public Stepper {
       substeps_ = c_.rock_subcycling ? ibm::rock_substeps(*gc.fixed_dt, rock_dt_) : 1;
       return *gc.fixed_dt;
     }
+    until = std::min(until, coupler_.next_initiation(gas_.time()));  // a charge fires at its time
     const ibm::CoupledStep s = ibm::plan_coupled_step(gas_.time(), gc.courant / rate_, rock_dt_, c_.rock_subcycling, until);
     substeps_ = s.rock_substeps;
     return s.dt;
@@ -258,6 +329,7 @@ class CoupledRunOutputs : public RunOutputs {
                     const RockModel& model, std::ostream& log, bool resume)
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler), log_(log), gas_out_(c.gas, gas, log, false, resume),
         rock_out_(c.rock, model, resume), series_(c, gas, rock, coupler, resume), blasthole_(c, gas, rock, coupler, resume),
+        charges_(c, coupler, resume),
         checkpoint_path_((std::filesystem::path(c.gas.output_directory) / "checkpoint.bin").string()) {
     rock_out_.set_crack_gas(coupler.crack_gas());
   }
@@ -268,6 +340,7 @@ class CoupledRunOutputs : public RunOutputs {
     rock_out_.snapshot();
     rock_out_.monitor();
     series_.write();
+    charges_.sample(gas_.time());
     blasthole_.sample();
     if (c_.checkpoint) write_checkpoint();
   }
@@ -282,6 +355,7 @@ class CoupledRunOutputs : public RunOutputs {
     rock_out_.write_checkpoint(w);
     series_.write_checkpoint(w);
     blasthole_.write_checkpoint(w);
+    charges_.write_checkpoint(w);
     w.value("run.warned", static_cast<int>(warned_));
     w.commit();
   }
@@ -294,6 +368,7 @@ class CoupledRunOutputs : public RunOutputs {
     rock_out_.read_checkpoint(r);
     series_.read_checkpoint(r);
     blasthole_.read_checkpoint(r);
+    charges_.read_checkpoint(r);
     warned_ = r.value<int>("run.warned") != 0;
     r.finish();
     log_ << fmt::format("restarted from {} at step {} (t = {:.6e} s)\n", checkpoint_path_, gas_.steps(), gas_.time());
@@ -309,22 +384,23 @@ class CoupledRunOutputs : public RunOutputs {
     const bool row = gas_.steps() % c_.gas.monitor_interval == 0;
     if (row) write_rows();
     blasthole_.sample();
-    if (snapshot) blasthole_.write_summary(rock_.energies(), rock_out_.summary());
+    if (snapshot) blasthole_.write_summary(rock_.energies(), charges_.summary() + rock_out_.summary());
     if (snapshot && c_.checkpoint) write_checkpoint();
     if (!last) return;
     gas_out_.write_end(dt, snapshot);
     if (!snapshot) rock_out_.snapshot();
     if (!row) write_rows();
-    if (!snapshot) blasthole_.write_summary(rock_.energies(), rock_out_.summary());
+    if (!snapshot) blasthole_.write_summary(rock_.energies(), charges_.summary() + rock_out_.summary());
   }
   //! One row of rock_series.csv and coupling_series.csv, and the budget warning.
   void write_rows() {
     const CaseConfig& gc = c_.gas;
     rock_out_.monitor();
     const double drift = series_.write();
+    charges_.sample(gas_.time());
     if (!warned_ && std::fabs(drift) > gc.drift_warning) {
       warned_ = true;
-      log_ << fmt::format("warning: the gas + rock energy budget is off by {:+.3e} of the initial energy (> "
+      log_ << fmt::format("warning: the gas + rock energy budget is off by {:+.3e} of the initial energy and the charges' (> "
                           "output.drift_warning = {:g}) at step {} (t = {:.6e} s); coupling_series.csv has the history\n",
                           drift, gc.drift_warning, gas_.steps(), gas_.time());
     }
@@ -332,7 +408,7 @@ class CoupledRunOutputs : public RunOutputs {
   void finish() override {
     const fdem::RockEnergies e = rock_.energies();
     const ibm::CouplingDiagnostics d = coupler_.diagnostics();
-    blasthole_.write_summary(e, rock_out_.summary());
+    blasthole_.write_summary(e, charges_.summary() + rock_out_.summary());
     log_ << fmt::format("coupled: {} steps to t = {:.4e} s; {} joints broken, crack length {:.4f} m; gas work on the rock "
                         "{:.4e} J/m\n", gas_.steps(), gas_.time(), e.broken_joints, e.crack_length, d.gas_work_on_rock);
     log_ << rock_out_.cost_note();
@@ -348,6 +424,7 @@ class CoupledRunOutputs : public RunOutputs {
   RockOutputs rock_out_;
   CouplingSeries series_;
   BlastholeFiles blasthole_;
+  ChargeFiles charges_;
   std::string checkpoint_path_;
   bool warned_ = false;  // the budget warning was printed
 };
@@ -365,6 +442,14 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   gas.initialise([&](double x, double y) { return gc.initial_state(x, y); });
   ibm::GasRockCoupler coupler(gas, rock, gc.ambient);
   if (c.crack_gas) coupler.enable_crack_gas(c.crack_gas_options);
+  if (!c.charges.empty()) {
+    coupler.set_charges(c.charges, c.charge_products);
+    const ibm::ChargeProducts& q = c.charge_products;
+    log << fmt::format("charges: {}; products start at rho0 {:g} kg/m3, e0 {:.4g} J/kg: p(rho0, e0) = {:.4g} Pa (rho0 D^2 / 8 = "
+                       "{:.4g} Pa with D = {:g} m/s)\n", c.charges.size(), q.density, q.specific_energy,
+                       gc.explosive->pressure(q.density, q.specific_energy),
+                       q.density * gc.detonation_velocity * gc.detonation_velocity / 8, gc.detonation_velocity);
+  }
   const bool resume = options.restart;
   if (!resume) coupler.rock_to_gas();  // masks first: cells under rock take the ambient state before any output
   log << fmt::format("coupled: gas {} x {} cells of {:.4g} x {:.4g} m ({} covered by rock); rock {} triangles, {} joints, "
@@ -385,6 +470,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   CoupledRunOutputs outputs(c, gas, rock, coupler, model, log, resume);
   if (resume) outputs.read_checkpoint(*reader);
   else outputs.start();
+  coupler.fire_due_charges();  // charges at t = 0 burn before the first dt is chosen (after the initial outputs)
   CoupledStepper stepper(c, gas, rock, coupler, rock_dt);
   run_loop(stepper, outputs, RunControl{gc.end_time, gc.max_steps, gc.progress_interval}, log, options);
 }

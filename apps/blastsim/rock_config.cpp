@@ -39,7 +39,8 @@ fdem::RockMaterial read_material(TableReader& r) {
 
 RockMeshSpec read_mesh(TableReader& t) {
   RockMeshSpec s;
-  s.shape = t.text("shape", {"rectangle", "disc", "disc_with_hole", "rectangle_with_hole", "file"});
+  s.shape = t.text("shape", {"rectangle", "disc", "disc_with_hole", "rectangle_with_hole", "rectangle_with_holes",
+                             "disc_with_holes", "file"});
   s.jitter = t.number("jitter", "", Range{0.0, 0.25, false, false}, 0.0);
   s.seed = t.integer("seed", "", 0, 1);
   if (s.shape == "file") {
@@ -51,13 +52,20 @@ RockMeshSpec read_mesh(TableReader& t) {
   if (s.mesher == "rings" && s.shape != "disc_with_hole")
     throw InputError(fmt::format("{}.mesher = \"rings\" meshes only shape = \"disc_with_hole\" (this mesh is \"{}\"): use "
                                  "mesher = \"gmsh\"", t.path(), s.shape));
-  if (s.shape == "rectangle" || s.shape == "rectangle_with_hole") {
+  for (TableReader& h : t.table_array("hole")) {
+    if (!s.has_holes())
+      throw InputError(fmt::format("{}: holes are cut from shape = \"rectangle_with_holes\" or \"disc_with_holes\" "
+                                   "(this mesh is \"{}\")", h.path(), s.shape));
+    s.holes.push_back({h.pair("center", "m"), h.number("radius", "m", Range::positive())});
+    h.finish();
+  }
+  if (s.shape == "rectangle" || s.shape == "rectangle_with_hole" || s.shape == "rectangle_with_holes") {
     s.min = t.pair("min", "m");
     s.max = t.pair("max", "m");
     if (!(s.max[0] > s.min[0]) || !(s.max[1] > s.min[1]))
       throw InputError(fmt::format("{}: max must exceed min in x and y", t.path()));
   }
-  if (s.shape == "disc" || s.shape == "disc_with_hole") {
+  if (s.shape == "disc" || s.shape == "disc_with_hole" || s.shape == "disc_with_holes") {
     s.center = t.pair("center", "m", std::array<double, 2>{0.0, 0.0});
     s.radius = t.number("radius", "m", Range::positive());
   }
@@ -67,8 +75,7 @@ RockMeshSpec read_mesh(TableReader& t) {
   }
   // Memory before meshing: about 2.3 area / h^2 triangles, each about 2 kB in mesh, topology and solver.
   if (s.shape != "file") {
-    const double area = s.shape == "rectangle" || s.shape == "rectangle_with_hole"
-                            ? std::fabs((s.max[0] - s.min[0]) * (s.max[1] - s.min[1]))
+    const double area = s.is_rectangle() ? std::fabs((s.max[0] - s.min[0]) * (s.max[1] - s.min[1]))
                             : M_PI * s.radius * s.radius;
     check_memory_need(fmt::format("rock.mesh.element_size = {:g} m on this {} (about {:.3g} triangles)", s.element_size,
                                   s.shape, 2.3 * area / (s.element_size * s.element_size)),
@@ -78,8 +85,9 @@ RockMeshSpec read_mesh(TableReader& t) {
     const fdem::Segment g{l.pair("from", "m"), l.pair("to", "m")};
     l.finish();
     if (s.shape == "rectangle_with_hole" || s.mesher != "gmsh")
-      throw InputError(fmt::format("{}: joint lines are made by Gmsh for shape = \"rectangle\", \"disc\" or "
-                                   "\"disc_with_hole\" (this mesh: shape \"{}\", mesher \"{}\")",
+      throw InputError(fmt::format("{}: joint lines are made by Gmsh for shape = \"rectangle\", \"disc\", "
+                                   "\"disc_with_hole\", \"rectangle_with_holes\" or \"disc_with_holes\" (this mesh: "
+                                   "shape \"{}\", mesher \"{}\")",
                                    l.path(), s.shape, s.mesher));
     if (std::hypot(g.b[0] - g.a[0], g.b[1] - g.a[1]) < 0.5 * s.element_size)
       throw InputError(fmt::format("{}: from ({}) m to ({}) m is shorter than half an element ({} m)", l.path(),
@@ -87,10 +95,10 @@ RockMeshSpec read_mesh(TableReader& t) {
     for (const auto& p : {g.a, g.b}) {
       const double tol = 1e-9 * std::max({s.max[0] - s.min[0], s.max[1] - s.min[1], s.radius});
       const double r = std::hypot(p[0] - s.center[0], p[1] - s.center[1]);
-      const bool inside = s.shape == "rectangle"
+      const bool inside = s.is_rectangle()
                               ? p[0] >= s.min[0] - tol && p[0] <= s.max[0] + tol && p[1] >= s.min[1] - tol &&
                                     p[1] <= s.max[1] + tol
-                              : r <= s.radius + tol && (s.shape == "disc" || r >= s.hole_radius - tol);
+                              : r <= s.radius + tol && (s.shape != "disc_with_hole" || r >= s.hole_radius - tol);
       if (!inside)
         throw InputError(fmt::format("{}: the end ({}) m lies outside the rock; both ends must lie in the {} or on its "
                                      "boundary", l.path(), fmt::join(p, ", "), s.shape));
@@ -143,6 +151,34 @@ void read_rock_section(TableReader& root, RockCaseConfig& c) {
   read_analysis_section(root, c);
 }
 
+void check_mesh_holes(const RockMeshSpec& s, const std::vector<std::string>& names) {
+  if (!s.has_holes()) return;
+  if (s.holes.empty())
+    throw InputError(fmt::format("rock.mesh.shape = \"{}\": needs at least one hole ([[rock.mesh.hole]], or the holes "
+                                 "of [[charge]] in a coupled case)", s.shape));
+  const double h = s.element_size;
+  for (std::size_t k = 0; k < s.holes.size(); ++k) {
+    const fdem::Circle& c = s.holes[k];
+    const bool inside = s.is_rectangle()
+                            ? c.center[0] - c.radius >= s.min[0] + 0.5 * h && c.center[0] + c.radius <= s.max[0] - 0.5 * h &&
+                                  c.center[1] - c.radius >= s.min[1] + 0.5 * h && c.center[1] + c.radius <= s.max[1] - 0.5 * h
+                            : std::hypot(c.center[0] - s.center[0], c.center[1] - s.center[1]) + c.radius <=
+                                  s.radius - 0.5 * h;
+    if (!inside)
+      throw InputError(fmt::format("{}: the hole (centre [{}, {}] m, radius {} m) is not inside the rock's {} with half an "
+                                   "element ({} m) to spare", names[k], c.center[0], c.center[1], c.radius, s.shape,
+                                   0.5 * h));
+    for (std::size_t l = 0; l < k; ++l) {
+      const fdem::Circle& o = s.holes[l];
+      const double d = std::hypot(c.center[0] - o.center[0], c.center[1] - o.center[1]);
+      if (d < c.radius + o.radius + 0.5 * h)
+        throw InputError(fmt::format("{}: its hole overlaps that of {} (centres {} m apart, radii {} and {} m; at least half "
+                                     "an element, {} m, of rock must lie between them)", names[k], names[l], d, c.radius,
+                                     o.radius, 0.5 * h));
+    }
+  }
+}
+
 void read_analysis_section(TableReader& root, RockCaseConfig& c) {
   TableReader a = root.table("analysis");
   AnalysisSpec& s = c.analysis;
@@ -153,6 +189,7 @@ void read_analysis_section(TableReader& root, RockCaseConfig& c) {
   s.ring_width = a.number("damage_ring_width", "m", Range::non_negative(), 0.0);
   s.crushed_fraction = a.number("crushed_fraction", "", Range{0.0, 1.0, true, false}, 0.5);
   for (TableReader& h : a.table_array("hole")) {
+    s.holes_given = true;
     DamageHole d;
     d.center = h.pair("center", "m");
     d.radius = h.number("radius", "m", Range::positive());
@@ -164,6 +201,8 @@ void read_analysis_section(TableReader& root, RockCaseConfig& c) {
   const RockMeshSpec& m = c.mesh;
   if (s.holes.empty() && (m.shape == "disc_with_hole" || m.shape == "rectangle_with_hole"))
     s.holes.push_back({m.center, m.hole_radius});
+  if (!s.holes_given)
+    for (const fdem::Circle& h : m.holes) s.holes.push_back({h.center, h.radius});
 }
 
 void read_rock_probes(TableReader& probe, RockCaseConfig& c) {
@@ -181,10 +220,80 @@ void read_rock_probes(TableReader& probe, RockCaseConfig& c) {
   check_unique_names("probe.rock_point", names);
 }
 
+void read_charges(TableReader& root, CoupledCaseConfig& c) {
+  std::vector<fdem::Circle> holes;
+  std::vector<std::string> names;
+  const cip::GasGrid& g = c.gas.grid;
+  for (TableReader& t : root.table_array("charge")) {
+    const std::string key = t.path();
+    if (!c.gas.explosive)
+      throw InputError(fmt::format("{}: a charge needs the explosive: give [gas.explosive] (a preset or JWL parameters)",
+                                   key));
+    ibm::Charge q;
+    q.center = t.pair("center", "m");
+    q.hole_radius = t.number("hole_radius", "m", Range::positive());
+    q.radius = t.number("radius", "m", Range::positive(), q.hole_radius);
+    if (q.radius > q.hole_radius)
+      throw InputError(fmt::format("{}.radius = {} m: the charge is larger than its hole ({}.hole_radius = {} m); a "
+                                   "charge must fit its hole (equal: fully coupled; smaller: the gap holds air)",
+                                   key, q.radius, key, q.hole_radius));
+    q.initiation_time = t.number("initiation_time", "s", Range::non_negative(), 0.0);
+    const std::string how = t.text("initiation", {"constant_volume", "point"}, std::string("constant_volume"));
+    if (how == "point") {
+      q.initiation = ibm::Initiation::point;
+      q.point = t.pair("initiation_point", "m", q.center);
+      if (std::hypot(q.point[0] - q.center[0], q.point[1] - q.center[1]) > q.radius)
+        throw InputError(fmt::format("{}.initiation_point = [{}, {}] m: outside the charge (radius {} m around [{}, {}] m)",
+                                     key, q.point[0], q.point[1], q.radius, q.center[0], q.center[1]));
+      q.detonation_velocity = c.gas.detonation_velocity;
+    } else if (t.has("initiation_point")) {
+      throw InputError(fmt::format("{}.initiation_point: only with initiation = \"point\" (this charge detonates at "
+                                   "constant volume)", key));
+    }
+    t.finish();
+    if (q.center[0] - q.hole_radius < g.x_min || q.center[0] + q.hole_radius > g.x_min + g.nx * g.dx ||
+        q.center[1] - q.hole_radius < g.y_min || q.center[1] + q.hole_radius > g.y_min + g.ny * g.dy)
+      throw InputError(fmt::format("{}: its hole (centre [{}, {}] m, radius {} m) leaves the gas domain", key, q.center[0],
+                                   q.center[1], q.hole_radius));
+    if (q.radius < 0.5 * std::min(g.dx, g.dy))
+      throw InputError(fmt::format("{}.radius = {} m: below half a gas cell ({} m); the grid cannot hold the charge",
+                                   key, q.radius, 0.5 * std::min(g.dx, g.dy)));
+    c.charges.push_back(q);
+    holes.push_back({q.center, q.hole_radius});
+    names.push_back(key);
+  }
+  RockMeshSpec& mesh = c.rock.mesh;
+  for (std::size_t k = 0; k < mesh.holes.size(); ++k) names.push_back(fmt::format("rock.mesh.hole.{}", k));
+  if (c.charges.empty()) {
+    check_mesh_holes(mesh, names);
+    return;
+  }
+  if (!mesh.has_holes() && mesh.shape != "file")
+    throw InputError(fmt::format("charge.0: the rock needs holes for its charges: use rock.mesh.shape = "
+                                 "\"rectangle_with_holes\" or \"disc_with_holes\" (the charges' holes are cut from it), "
+                                 "or a mesh file with the holes (this mesh is \"{}\")", mesh.shape));
+  if (c.gas.solver.transport != cip::Transport::conservative)
+    throw InputError("gas.transport = \"paper\": the paper's transport carries one gas; charges (their detonation "
+                     "products) need \"conservative\"");
+  c.gas.charges = true;
+  c.charge_products = {c.gas.explosive->jwl.rho0, c.gas.detonation_energy};
+  mesh.holes.insert(mesh.holes.begin(), holes.begin(), holes.end());
+  check_mesh_holes(mesh, names);
+  if (!c.rock.analysis.holes_given) {  // the damage zone around every hole, the charges' first
+    std::vector<DamageHole> all;
+    for (const fdem::Circle& h : holes) all.push_back({h.center, h.radius});
+    all.insert(all.end(), c.rock.analysis.holes.begin(), c.rock.analysis.holes.end());
+    c.rock.analysis.holes = all;
+  }
+}
+
 RockCaseConfig read_rock_case(const toml::table& input) {
   RockCaseConfig c;
   TableReader root(input, "", c.echo);
   read_rock_section(root, c);
+  std::vector<std::string> hole_names;
+  for (std::size_t k = 0; k < c.mesh.holes.size(); ++k) hole_names.push_back(fmt::format("rock.mesh.hole.{}", k));
+  check_mesh_holes(c.mesh, hole_names);
 
   const TimeKeys time = read_time_keys(root, CaseKind::rock);
   c.end_time = time.end;
@@ -213,6 +322,7 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
                      "tables (or run the rock alone)");
   if (c.rock.pressure_ramp_time > 0)
     throw InputError("rock.pressure_ramp_time: not used in a coupled case (the gas loads the rock); remove it");
+  read_charges(root, c);
 
   const TimeKeys time = read_time_keys(root, CaseKind::coupled);
   c.gas.end_time = c.rock.end_time = time.end;

@@ -16,7 +16,7 @@ namespace blastsim::app {
 
 //! How the rock mesh is made: a Gmsh-built shape or a .msh file.
 struct RockMeshSpec {
-  std::string shape;                 //!< rectangle | disc | disc_with_hole | rectangle_with_hole | file
+  std::string shape;  //!< rectangle | disc | disc_with_hole | rectangle_with_hole | rectangle_with_holes | disc_with_holes | file
   double element_size = 0;           //!< [m]
   std::array<double, 2> center{};    //!< [m] discs and holes
   double radius = 0, hole_radius = 0;  //!< [m]
@@ -24,8 +24,13 @@ struct RockMeshSpec {
   std::string file;                  //!< .msh path (shape = file)
   std::string mesher = "gmsh";       //!< gmsh | rings (disc_with_hole without Gmsh: fdem::ring_disc_with_hole)
   std::vector<fdem::Segment> joint_lines;  //!< [m] segments the Gmsh mesh follows: a row of joints along each
+  //! [m] holes of rectangle_with_holes / disc_with_holes: the [[charge]] holes first (a coupled case puts them
+  //! here), then [[rock.mesh.hole]]; boundary groups hole0, hole1, ... in this order
+  std::vector<fdem::Circle> holes;
   double jitter = 0;                 //!< interior vertices moved by up to this fraction of their shortest edge
   long long seed = 1;                //!< of the jitter (one realisation per seed)
+  bool is_rectangle() const { return shape.rfind("rectangle", 0) == 0; }
+  bool has_holes() const { return shape == "rectangle_with_holes" || shape == "disc_with_holes"; }
 };
 
 //! A velocity probe in the rock ([[probe.rock_point]]): follows the material point at `position`.
@@ -49,7 +54,8 @@ struct AnalysisSpec {
   double oversize = 0.5;          //!< [m] sieve size above which a fragment is oversize
   double ring_width = 0;          //!< [m] of the damage-zone rings (0: twice the mean joint length)
   double crushed_fraction = 0.5;  //!< broken share of a ring's joint length that makes it crushed
-  std::vector<DamageHole> holes;  //!< (default: the mesh's hole, when it has one)
+  std::vector<DamageHole> holes;  //!< (default: the mesh's holes, when it has some)
+  bool holes_given = false;       //!< [[analysis.hole]] tables were given (else the defaults above)
 };
 
 //! Prescribed velocity of every node whose initial position lies in the box [min, max].

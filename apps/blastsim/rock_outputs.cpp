@@ -26,6 +26,9 @@ fdem::NamedMesh make_mesh(const RockMeshSpec& s) {
   if (s.shape == "rectangle_with_hole")
     return fdem::gmsh_rectangle_with_hole(s.min[0], s.min[1], s.max[0], s.max[1], s.center[0], s.center[1],
                                           s.hole_radius, h);
+  if (s.shape == "rectangle_with_holes")
+    return fdem::gmsh_rectangle_with_holes(s.min[0], s.min[1], s.max[0], s.max[1], s.holes, h, s.joint_lines);
+  if (s.shape == "disc_with_holes") return fdem::gmsh_disc_with_holes(s.center[0], s.center[1], s.radius, s.holes, h, s.joint_lines);
   return fdem::read_gmsh_file(s.file);
 }
 

@@ -264,9 +264,12 @@ void RockSolver::step(double dt) {
     const std::vector<double> hx = to_host(a_->nodes.vx), hy = to_host(a_->nodes.vy);
     size_t bad = 0;
     while (bad < hx.size() && std::isfinite(hx[bad] * hx[bad] + hy[bad] * hy[bad])) ++bad;
+    const std::vector<double> x0 = to_host(a_->node_params.x0), y0 = to_host(a_->node_params.y0);
+    std::ostringstream where;
+    if (bad < x0.size()) where << " (initially at " << x0[bad] << ", " << y0[bad] << " m)";
     throw InstabilityError("rock velocity not finite at step " + std::to_string(steps_) + " (t = " +
                            std::to_string(time_) + " s), node " + std::to_string(bad) + " of triangle " +
-                           std::to_string(bad / 3));
+                           std::to_string(bad / 3) + where.str());
   }
   travel_since_build_ += v_max * dt;
 }

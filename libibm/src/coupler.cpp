@@ -91,10 +91,12 @@ void GasRockCoupler::rock_to_gas() {
                                       two, next, m});
   // Charge cells whose lighting time has come burn, from the second call on: the first call's state is the
   // run's initial state, and the budget counts what burning adds.
-  if (!charges_.empty() && masks_set_)
+  if (!charges_.empty() && masks_set_) {
+    burnt_until_ = t;
     for_each_cell("ibm.charge.burn", 0, g.nx, 0, g.ny,
-                  ChargeBurnKernel{charge_cells, device_ptr(a_->burnt), device_ptr(a_->charge_ledger), t, g.cell_area(),
+                  ChargeBurnKernel{charge_cells, ib.cell_active, device_ptr(a_->burnt), device_ptr(a_->charge_ledger), t, g.cell_area(),
                                    products_, s, m});
+  }
   masks_set_ = true;
   gas_.apply_boundaries();
 }
@@ -142,6 +144,7 @@ void GasRockCoupler::set_charges(const std::vector<Charge>& charges, const Charg
   const index_t cells = static_cast<index_t>(g.nx) * g.ny;
   std::vector<int> owner(cells, -1);
   std::vector<double> burn(cells, 0.0);
+  std::vector<std::array<double, 2>> windows;
   for (std::size_t k = 0; k < charges.size(); ++k) {
     const Charge& c = charges[k];
     const std::string name = "charge " + std::to_string(k);
@@ -152,6 +155,7 @@ void GasRockCoupler::set_charges(const std::vector<Charge>& charges, const Charg
       throw InputError(name + ": a point initiation needs a detonation velocity > 0");
     if (!(c.initiation_time >= 0)) throw InputError(name + ": initiation time must be >= 0 s");
     int count = 0;
+    std::array<double, 2> window{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     const int i0 = std::max(0, static_cast<int>(std::floor((c.center[0] - c.radius - g.x_min) / g.dx)));
     const int i1 = std::min(g.nx - 1, static_cast<int>(std::ceil((c.center[0] + c.radius - g.x_min) / g.dx)));
     const int j0 = std::max(0, static_cast<int>(std::floor((c.center[1] - c.radius - g.y_min) / g.dy)));
@@ -166,13 +170,17 @@ void GasRockCoupler::set_charges(const std::vector<Charge>& charges, const Charg
                            std::to_string(i) + ", " + std::to_string(j) + ")");
         owner[cell] = static_cast<int>(k);
         burn[cell] = lighting_time(c, x, y);
+        window[0] = std::min(window[0], burn[cell]), window[1] = std::max(window[1], burn[cell]);
         ++count;
       }
     if (count == 0)
       throw InputError(name + ": radius " + std::to_string(c.radius) + " m holds no cell centre of the gas grid (cells " +
                        std::to_string(g.dx) + " m): refine the grid");
+    windows.push_back(window);
   }
   charges_ = charges;
+  charge_window_ = windows;
+  burnt_until_ = -std::numeric_limits<double>::infinity();
   products_ = products;
   copy_from_host(a_->charge_of_cell, owner);
   copy_from_host(a_->burn_time, burn);
@@ -268,6 +276,17 @@ void GasRockCoupler::step(double dt, int rock_substeps) {
   gas_to_rock();
   const double rock_dt = dt / rock_substeps;
   for (int k = 0; k < rock_substeps; ++k) rock_.step(rock_dt);
+  fire_due_charges();  // before the next step chooses its dt: the products' sound speed must set it
+}
+
+bool GasRockCoupler::charges_due(double t) const {
+  for (const std::array<double, 2>& w : charge_window_)
+    if (w[0] <= t && burnt_until_ < w[1] && burnt_until_ < t) return true;
+  return false;
+}
+
+void GasRockCoupler::fire_due_charges() {
+  if (masks_set_ && charges_due(gas_.time())) rock_to_gas();
 }
 
 double GasRockCoupler::stable_dt(double courant) const { return std::min(gas_.courant_dt(courant), rock_.stable_dt()); }
@@ -348,6 +367,7 @@ void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
   if (!charges_.empty()) {
     w.array("ibm.charge.burnt", a_->burnt);
     w.array("ibm.charge.ledger", a_->charge_ledger);
+    w.value("ibm.charge.burnt_until", burnt_until_);
   }
 }
 
@@ -362,6 +382,8 @@ void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
     for (std::uint8_t b : to_host(a_->burnt))
       if (b > 1) r.fail("ibm.charge.burnt", "a flag is not 0 or 1");
     r.array("ibm.charge.ledger", a_->charge_ledger, a_->charge_ledger.size());
+    burnt_until_ = r.value<double>("ibm.charge.burnt_until");
+    if (std::isnan(burnt_until_)) r.fail("ibm.charge.burnt_until", "not a number");
   }
 }
 

@@ -15,6 +15,8 @@
 
 namespace fs = std::filesystem;
 using namespace blastsim;
+using blastsim::testing::csv_columns;
+using blastsim::testing::file_bytes;
 using blastsim::testing::fresh_dir;
 using blastsim::testing::first_line;
 
@@ -140,14 +142,6 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(app::run_coupled_case(read(outside), log), Catch::Contains("probe.rock_point.2.position"));
 }
 
-namespace {
-std::string file_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
 
 TEST_CASE("A coupled run killed and restarted from its checkpoint ends byte for byte like the uninterrupted run",
           "[app][coupled][restart]") {
@@ -214,22 +208,6 @@ std::string small_blast_text(const fs::path& out, double end) {
   return s.str();
 }
 
-//! All rows of a CSV file, columns by header name.
-std::map<std::string, std::vector<double>> all_rows(const fs::path& p) {
-  std::ifstream in(p);
-  std::string header, line;
-  std::getline(in, header);
-  std::vector<std::string> names;
-  std::stringstream h(header);
-  for (std::string n; std::getline(h, n, ',');) names.push_back(n);
-  std::map<std::string, std::vector<double>> cols;
-  while (std::getline(in, line)) {
-    std::stringstream v(line);
-    std::string value;
-    for (size_t k = 0; k < names.size() && std::getline(v, value, ','); ++k) cols[names[k]].push_back(std::stod(value));
-  }
-  return cols;
-}
 }  // namespace
 
 TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy budget, cracks that take gas",
@@ -242,7 +220,7 @@ TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy
   INFO(log.str());
   // S1: before the first crack, the gas pressure around the hole wall and the rock's radial stress at the wall
   // (45-degree sector means) are symmetric within 5 %, and they agree (fluid pressure = radial stress).
-  const auto wall = all_rows(out / "wall_series.csv");
+  const auto wall = csv_columns(out / "wall_series.csv");
   size_t before = 0;
   while (before + 1 < wall.at("broken_joints").size() && wall.at("broken_joints")[before + 1] == 0) ++before;
   const double t1 = wall.at("time_s")[before], p_mean = wall.at("gas_pressure_wall_mean_Pa")[before];
@@ -263,7 +241,7 @@ TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy
   CHECK(std::fabs(residual) < 0.05 * work);
   // Cracks appear, and gas enters them: gas mass in the disc outside the hole region (r > 25 mm) grows
   // well beyond the air that was there.
-  const auto cs = all_rows(out / "coupling_series.csv");
+  const auto cs = csv_columns(out / "coupling_series.csv");
   const double annulus0 = cs.at("disc_mass_kg_per_m").front() - cs.at("hole_mass_kg_per_m").front();
   const double annulus1 = cs.at("disc_mass_kg_per_m").back() - cs.at("hole_mass_kg_per_m").back();
   std::printf("blast: gas in the disc outside the hole %.3e -> %.3e kg/m\n", annulus0, annulus1);

@@ -4,6 +4,7 @@
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/core/error.hpp"
 #include "catch.hpp"
+#include "isentrope.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -11,23 +12,7 @@
 
 using namespace blastsim;
 
-namespace {
-
-//! Integrates the isentrope de/drho = p(rho, e) / rho^2 (first law with no heat) from (rho, e) to rho_end by
-//! classical Runge-Kutta in n steps; returns e at rho_end.
-double isentrope_energy_at(const cip::EquationOfState& eos, double rho, double e, double rho_end, int n = 200) {
-  const double h = (rho_end - rho) / n;
-  auto f = [&](double r, double en) { return eos.pressure(r, en) / (r * r); };
-  for (int k = 0; k < n; ++k) {
-    const double k1 = f(rho, e), k2 = f(rho + h / 2, e + h / 2 * k1), k3 = f(rho + h / 2, e + h / 2 * k2),
-                 k4 = f(rho + h, e + h * k3);
-    e += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-    rho += h;
-  }
-  return e;
-}
-
-}  // namespace
+using test::isentrope_energy_at;
 
 TEST_CASE("G10 JWL products: isentrope, ideal-gas limit, sound speed, inverse", "[cip][G10][eos]") {
   for (const cip::JwlPreset& preset : cip::kJwlPresets) {

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 using namespace blastsim::fdem;
 
@@ -79,6 +81,33 @@ TEST_CASE("Gmsh disc with a hole: area and hole perimeter converge to the circle
   const NamedMesh rh = gmsh_rectangle_with_hole(-0.1, -0.1, 0.1, 0.1, 0.0, 0.0, 0.03, h);
   CHECK_THAT(mesh_area(rh.mesh), WithinRel(0.04 - M_PI * 0.03 * 0.03, 0.01));
   CHECK(rh.boundary_groups.count("hole") == 1);
+}
+
+TEST_CASE("Gmsh rectangle and disc with several holes: areas, one group per hole, every edge grouped",
+          "[fdem][mesh][gmsh]") {
+  const double h = 0.005;
+  const std::vector<Circle> holes{{{0.05, 0.06}, 0.01}, {{0.12, 0.06}, 0.015}, {{0.19, 0.05}, 0.012}};
+  double holes_area = 0;
+  for (const Circle& c : holes) holes_area += M_PI * c.radius * c.radius;
+  const NamedMesh r = gmsh_rectangle_with_holes(0.0, 0.0, 0.24, 0.12, holes, h, {{{0.0, 0.1}, {0.24, 0.1}}});
+  const NamedMesh d = gmsh_disc_with_holes(0.12, 0.06, 0.11, holes, h);
+  std::printf("Gmsh rectangle with 3 holes: %zu triangles, area %.6f vs %.6f m2; disc with 3 holes: area %.6f vs "
+              "%.6f m2; hole perimeters %.5f %.5f %.5f m\n", r.mesh.triangles.size(), mesh_area(r.mesh),
+              0.24 * 0.12 - holes_area, mesh_area(d.mesh), M_PI * 0.11 * 0.11 - holes_area, group_length(r, "hole0"),
+              group_length(r, "hole1"), group_length(r, "hole2"));
+  // Polygons inscribed in the circles (edges about h, at least 12 per hole): within 1 % as for one hole.
+  CHECK_THAT(mesh_area(r.mesh), WithinRel(0.24 * 0.12 - holes_area, 0.01));
+  CHECK_THAT(mesh_area(d.mesh), WithinRel(M_PI * 0.11 * 0.11 - holes_area, 0.01));
+  for (const NamedMesh* m : {&r, &d}) {
+    for (size_t k = 0; k < holes.size(); ++k)
+      CHECK_THAT(group_length(*m, "hole" + std::to_string(k)), WithinRel(2 * M_PI * holes[k].radius, 0.01));
+    const FdemTopology topo = build_topology(m->mesh);
+    size_t grouped = 0;
+    for (const auto& [name, edges] : m->boundary_groups) grouped += boundary_slots(topo, edges, name).size();
+    CHECK(grouped == topo.boundary_edges.size());
+  }
+  CHECK_THAT(group_length(r, "top"), WithinRel(0.24, 1e-12));
+  CHECK_THAT(group_length(d, "outer"), WithinRel(2 * M_PI * 0.11, 0.01));
 }
 
 TEST_CASE(".msh file: triangles and a named boundary group are read", "[fdem][mesh][gmsh]") {

@@ -161,18 +161,30 @@ struct GasMaterials {
     return mixture_sound_speed(rho, alpha, m1, pressure(rho, e, alpha, m1));
   }
   //! The mixture sound speed of a cell with products (alpha > kMinFraction) whose pressure p [Pa] is known.
+  //! In a mixed cell one phase's density m_k / alpha_k can leave the range where its equation of state has a
+  //! real sound speed at the common pressure (the transport smears alpha and m1 apart: a products density far
+  //! above rho0 at a pressure near the air's); that phase then takes the other phase's sound speed. NaN only
+  //! when no phase present has a real one.
   BLAST_HD double mixture_sound_speed(double rho, double alpha, double m1, double p) const {
     const double a2 = 1.0 - alpha, m2 = rho - m1;
     const double xi = alpha / products.gruneisen() + a2 / air.gruneisen();
+    const bool has1 = m1 > 0.0, has2 = a2 > kMinFraction && m2 > 0.0;
+    double c1 = NAN, c2 = NAN;
+    if (has1) {
+      const double r1 = m1 / alpha;
+      c1 = products.sound_speed(r1, products.internal_energy(r1, p));
+    }
+    if (has2) {
+      const double r2 = m2 / a2;
+      c2 = air.sound_speed(r2, air.internal_energy(r2, p));
+    }
+    if (has1 && has2) {
+      if (!(c1 == c1)) c1 = c2;
+      if (!(c2 == c2)) c2 = c1;
+    }
     double sum = 0.0;
-    if (m1 > 0.0) {
-      const double r1 = m1 / alpha, c1 = products.sound_speed(r1, products.internal_energy(r1, p));
-      sum += m1 / rho * c1 * c1 / products.gruneisen();
-    }
-    if (a2 > kMinFraction && m2 > 0.0) {
-      const double r2 = m2 / a2, c2 = air.sound_speed(r2, air.internal_energy(r2, p));
-      sum += m2 / rho * c2 * c2 / air.gruneisen();
-    }
+    if (has1) sum += m1 / rho * c1 * c1 / products.gruneisen();
+    if (has2) sum += m2 / rho * c2 * c2 / air.gruneisen();
     return sqrt(sum / xi);
   }
   //! Mixture internal energy per unit volume rho e [J/m3] at pressure p, volume fraction alpha and phase

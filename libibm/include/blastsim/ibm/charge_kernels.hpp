@@ -18,11 +18,12 @@ inline constexpr int kNoOwner = -1, kChargeOwner = -2;
 
 //! Lighting time [s] of a point (x, y) [m] of a charge: its initiation time, plus, for a point initiation, the
 //! time the detonation front needs to come from the initiation point at the detonation velocity (Wilkins'
-//! programmed burn: the front is a circle |x - x0| = D (t - t0)).
-BLAST_HD inline double lighting_time(const Charge& c, double x, double y) {
+//! programmed burn: the front is a circle |x - x0| = D (t - t0)). Host code (GasRockCoupler::set_charges tabulates
+//! it per cell).
+inline double lighting_time(const Charge& c, double x, double y) {
   if (c.initiation != Initiation::point) return c.initiation_time;
   const double dx = x - c.point[0], dy = y - c.point[1];
-  return c.initiation_time + sqrt(dx * dx + dy * dy) / c.detonation_velocity;
+  return c.initiation_time + std::sqrt(dx * dx + dy * dy) / c.detonation_velocity;
 }
 
 //! The charge cells of the grid (params, one per cell i + nx j, built by GasRockCoupler::set_charges) and
@@ -57,11 +58,13 @@ struct ChargeCoverKernel {
 
 //! Burns the charge cells whose lighting time has come (constant-volume explosion of each cell: the
 //! products at the explosive's density rho0 and detonation energy e0, at rest; their faces were walls at
-//! rest until now). The cell's own ledger entry (4 per cell: products mass, detonation energy, and the mass
+//! rest until now). A charge cell that the rock covers (the mesh's hole is a polygon inside the circle) burns
+//! empty. The cell's own ledger entry (4 per cell: products mass, detonation energy, and the mass
 //! and internal energy of the gas it held, all per unit thickness) records what changed; no other cell is
 //! written, so the result does not depend on the order.
 struct ChargeBurnKernel {
   ChargeCells cells;
+  Field2D<const std::uint8_t> active;  //!< the new mask
   std::uint8_t* burnt;
   double* ledger;
   double t, cell_area;
@@ -72,6 +75,7 @@ struct ChargeBurnKernel {
     const index_t c = static_cast<index_t>(j) * cells.nx + i;
     if (cells.charge[c] < 0 || burnt[c] || t < cells.burn_time[c]) return;
     burnt[c] = 1;
+    if (!active(i, j)) return;  // under rock (the mesh's polygon cuts into the hole's circle): no explosive there
     double* led = ledger + 4 * c;
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     led[0] += products.density * cell_area;

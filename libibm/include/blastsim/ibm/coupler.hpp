@@ -86,7 +86,7 @@ class GasRockCoupler {
 
   //! One coupled step of dt [s]: rock_to_gas(), gas step, gas_to_rock(), then `rock_substeps` rock steps of
   //! dt / rock_substeps under those edge pressures (1: the paper's single dt; more: the rock subcycles a gas
-  //! step longer than its stable step, docs/coupling.md). With crack gas: after rock_to_gas() the cracks'
+  //! step longer than its stable step, docs/coupling.md), then fire_due_charges(). With crack gas: after rock_to_gas() the cracks'
   //! geometry, after the gas step their mouths (from the cells' new gas), their own steps (as many as their
   //! Courant limit needs) and what they gave to or took from the grid cells.
   void step(double dt, int rock_substeps = 1);
@@ -121,6 +121,10 @@ class GasRockCoupler {
   //! The earliest initiation time of a charge later than t [s] (infinity when none): a stepper lands a step
   //! on it, so that a charge fires at its time and not up to a step later.
   double next_initiation(double t) const;
+  //! Burns the charge cells lit by now (a rock_to_gas() when any charge has cells due), so that the next dt
+  //! sees the products. step() calls it at its end; call it once after the first rock_to_gas() (and after the
+  //! run's initial outputs) when a charge fires at t = 0, before the first dt is chosen.
+  void fire_due_charges();
 
   //! Largest dt [s] that both solvers accept: min(gas Courant limit at `courant`, rock stable step).
   double stable_dt(double courant) const;
@@ -145,6 +149,9 @@ class GasRockCoupler {
   std::unique_ptr<CrackGas> crack_;
   std::vector<Charge> charges_;
   ChargeProducts products_;
+  std::vector<std::array<double, 2>> charge_window_;  // per charge: its first and last lighting time [s]
+  double burnt_until_ = 0;  // gas time of the last rock_to_gas() that burnt (every cell lit by then is burnt)
+  bool charges_due(double t) const;
   void crack_geometry();
   void crack_mouths();
   void apply_crack_deposits();
