@@ -19,6 +19,20 @@
 
 namespace blastsim::ibm {
 
+namespace {
+//! The cells i0..i1, j0..j1 (inclusive, clipped to the grid) whose centres may lie within r [m] of c.
+struct CellBox {
+  int i0, i1, j0, j1;
+  index_t count() const { return static_cast<index_t>(i1 - i0 + 1) * (j1 - j0 + 1); }
+};
+CellBox cells_around(const cip::GasGrid& g, const std::array<double, 2>& c, double r) {
+  return {std::max(0, static_cast<int>(std::floor((c[0] - r - g.x_min) / g.dx))),
+          std::min(g.nx - 1, static_cast<int>(std::ceil((c[0] + r - g.x_min) / g.dx))),
+          std::max(0, static_cast<int>(std::floor((c[1] - r - g.y_min) / g.dy))),
+          std::min(g.ny - 1, static_cast<int>(std::ceil((c[1] + r - g.y_min) / g.dy)))};
+}
+}  // namespace
+
 
 namespace detail {
 //! The coupler's device arrays.
@@ -34,11 +48,11 @@ struct CouplerArrays {
   DeviceVector<int> junction_cell, handover_cell, keys, order;
   DeviceVector<ChannelConserved> handover;
   DeviceVector<double> load_factor;  // per segment: crack_width()'s dw_dopening
-  // charges (set_charges): per cell (i + nx j) its charge or -1 and its lighting time (params), whether it
-  // burnt, and its ledger (4 per cell: products mass, detonation energy, replaced mass and energy)
+  // charges (set_charges): per cell (i + nx j) its charge or -1 and its lighting time (params), and its ledger
+  // (4 per cell: products mass, detonation energy, replaced mass and energy). A cell has burnt when its
+  // lighting time is at most burnt_until_.
   DeviceVector<int> charge_of_cell;
   DeviceVector<double> burn_time, charge_ledger;
-  DeviceVector<std::uint8_t> burnt;
 };
 }  // namespace detail
 
@@ -92,10 +106,10 @@ void GasRockCoupler::rock_to_gas() {
   // Charge cells whose lighting time has come burn, from the second call on: the first call's state is the
   // run's initial state, and the budget counts what burning adds.
   if (!charges_.empty() && masks_set_) {
-    burnt_until_ = t;
     for_each_cell("ibm.charge.burn", 0, g.nx, 0, g.ny,
-                  ChargeBurnKernel{charge_cells, ib.cell_active, device_ptr(a_->burnt), device_ptr(a_->charge_ledger), t, g.cell_area(),
-                                   products_, s, m});
+                  ChargeBurnKernel{charge_cells, ib.cell_active, device_ptr(a_->charge_ledger), burnt_until_, t,
+                                   g.cell_area(), products_, s, m});
+    burnt_until_ = t;
   }
   masks_set_ = true;
   gas_.apply_boundaries();
@@ -156,12 +170,9 @@ void GasRockCoupler::set_charges(const std::vector<Charge>& charges, const Charg
     if (!(c.initiation_time >= 0)) throw InputError(name + ": initiation time must be >= 0 s");
     int count = 0;
     std::array<double, 2> window{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-    const int i0 = std::max(0, static_cast<int>(std::floor((c.center[0] - c.radius - g.x_min) / g.dx)));
-    const int i1 = std::min(g.nx - 1, static_cast<int>(std::ceil((c.center[0] + c.radius - g.x_min) / g.dx)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((c.center[1] - c.radius - g.y_min) / g.dy)));
-    const int j1 = std::min(g.ny - 1, static_cast<int>(std::ceil((c.center[1] + c.radius - g.y_min) / g.dy)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
+    const CellBox box = cells_around(g, c.center, c.radius);
+    for (int j = box.j0; j <= box.j1; ++j)
+      for (int i = box.i0; i <= box.i1; ++i) {
         const double x = g.x_min + (i + 0.5) * g.dx, y = g.y_min + (j + 0.5) * g.dy;
         if (std::hypot(x - c.center[0], y - c.center[1]) > c.radius) continue;
         const index_t cell = static_cast<index_t>(j) * g.nx + i;
@@ -184,7 +195,6 @@ void GasRockCoupler::set_charges(const std::vector<Charge>& charges, const Charg
   products_ = products;
   copy_from_host(a_->charge_of_cell, owner);
   copy_from_host(a_->burn_time, burn);
-  a_->burnt.assign(cells, 0);
   a_->charge_ledger.assign(4 * cells, 0.0);
 }
 
@@ -196,13 +206,10 @@ std::vector<double> GasRockCoupler::charge_pressures() const {
   const Field2D<const std::uint8_t> active = gas_.immersed_boundary().cell_active;
   std::vector<double> out;
   for (const Charge& c : charges_) {
-    const int i0 = std::max(0, static_cast<int>(std::floor((c.center[0] - c.hole_radius - g.x_min) / g.dx)));
-    const int i1 = std::min(g.nx - 1, static_cast<int>(std::ceil((c.center[0] + c.hole_radius - g.x_min) / g.dx)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((c.center[1] - c.hole_radius - g.y_min) / g.dy)));
-    const int j1 = std::min(g.ny - 1, static_cast<int>(std::ceil((c.center[1] + c.hole_radius - g.y_min) / g.dy)));
-    const int ni = i1 - i0 + 1;
+    const CellBox box = cells_around(g, c.center, c.hole_radius);
+    const int i0 = box.i0, j0 = box.j0, ni = box.i1 - box.i0 + 1;
     const double cx = c.center[0], cy = c.center[1], r = c.hole_radius;
-    const Vec2Sum sum = reduce_sum("ibm.charge.pressure", static_cast<index_t>(ni) * (j1 - j0 + 1), Vec2Sum{0, 0},
+    const Vec2Sum sum = reduce_sum("ibm.charge.pressure", box.count(), Vec2Sum{0, 0},
                                    [=] BLAST_HD(index_t k) {
                                      const int i = i0 + static_cast<int>(k % ni), j = j0 + static_cast<int>(k / ni);
                                      const double x = g.x_min + (i + 0.5) * g.dx - cx, y = g.y_min + (j + 0.5) * g.dy - cy;
@@ -218,11 +225,15 @@ std::vector<double> GasRockCoupler::charge_energies() const {
   std::vector<double> out;
   const int* owner = device_ptr(a_->charge_of_cell);
   const double* led = device_ptr(a_->charge_ledger);
-  const index_t cells = static_cast<index_t>(a_->charge_of_cell.size());
+  const cip::GasGrid g = gas_.grid();
+  const int nx = g.nx;
   for (std::size_t k = 0; k < charges_.size(); ++k) {
-    const int kk = static_cast<int>(k);
-    out.push_back(reduce_sum("ibm.charge.energy", cells, 0.0,
-                             [=] BLAST_HD(index_t c) { return owner[c] == kk ? led[4 * c + 1] : 0.0; }));
+    const CellBox box = cells_around(g, charges_[k].center, charges_[k].radius);  // its cells lie in there
+    const int kk = static_cast<int>(k), i0 = box.i0, j0 = box.j0, ni = box.i1 - box.i0 + 1;
+    out.push_back(reduce_sum("ibm.charge.energy", box.count(), 0.0, [=] BLAST_HD(index_t b) {
+      const index_t c = static_cast<index_t>(j0 + b / ni) * nx + i0 + b % ni;
+      return owner[c] == kk ? led[4 * c + 1] : 0.0;
+    }));
   }
   return out;
 }
@@ -310,8 +321,10 @@ CouplingDiagnostics GasRockCoupler::diagnostics() const {
   if (crack_) d.crack_gas = true, d.crack = crack_->totals(mat_ambient_pressure());
   if (!charges_.empty()) {
     const double* cl = device_ptr(a_->charge_ledger);
-    const std::uint8_t* burnt = device_ptr(a_->burnt);
-    const index_t cells = static_cast<index_t>(a_->burnt.size());
+    const int* owner = device_ptr(a_->charge_of_cell);
+    const double* lit = device_ptr(a_->burn_time);
+    const double until = burnt_until_;
+    const index_t cells = static_cast<index_t>(a_->charge_of_cell.size());
     auto charge_total = [&](int c) {
       return reduce_sum("ibm.charge.ledger", cells, 0.0, [=] BLAST_HD(index_t k) { return cl[4 * k + c]; });
     };
@@ -320,7 +333,9 @@ CouplingDiagnostics GasRockCoupler::diagnostics() const {
     d.charges.replaced_mass = charge_total(2);
     d.charges.replaced_energy = charge_total(3);
     d.charges.burnt_cells = std::lround(
-        reduce_sum("ibm.charge.burnt", cells, 0.0, [=] BLAST_HD(index_t k) { return burnt[k] ? 1.0 : 0.0; }));
+        reduce_sum("ibm.charge.burnt", cells, 0.0, [=] BLAST_HD(index_t k) {
+          return owner[k] >= 0 && lit[k] <= until ? 1.0 : 0.0;
+        }));
   }
   return d;
 }
@@ -365,7 +380,6 @@ void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
   w.array("ibm.ledger", a_->ledger);
   if (crack_) crack_->write_checkpoint(w);
   if (!charges_.empty()) {
-    w.array("ibm.charge.burnt", a_->burnt);
     w.array("ibm.charge.ledger", a_->charge_ledger);
     w.value("ibm.charge.burnt_until", burnt_until_);
   }
@@ -378,9 +392,6 @@ void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
   r.array("ibm.ledger", a_->ledger, a_->ledger.size());
   if (crack_) crack_->read_checkpoint(r);
   if (!charges_.empty()) {
-    r.array("ibm.charge.burnt", a_->burnt, a_->burnt.size());
-    for (std::uint8_t b : to_host(a_->burnt))
-      if (b > 1) r.fail("ibm.charge.burnt", "a flag is not 0 or 1");
     r.array("ibm.charge.ledger", a_->charge_ledger, a_->charge_ledger.size());
     burnt_until_ = r.value<double>("ibm.charge.burnt_until");
     if (std::isnan(burnt_until_)) r.fail("ibm.charge.burnt_until", "not a number");

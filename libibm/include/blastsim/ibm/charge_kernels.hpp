@@ -26,8 +26,7 @@ inline double lighting_time(const Charge& c, double x, double y) {
   return c.initiation_time + std::sqrt(dx * dx + dy * dy) / c.detonation_velocity;
 }
 
-//! The charge cells of the grid (params, one per cell i + nx j, built by GasRockCoupler::set_charges) and
-//! their burn state.
+//! The charge cells of the grid (params, one per cell i + nx j, built by GasRockCoupler::set_charges).
 struct ChargeCells {
   const int* charge;        //!< the charge whose circle holds the cell centre, or -1
   const double* burn_time;  //!< [s] the lighting time of the cell centre
@@ -56,7 +55,7 @@ struct ChargeCoverKernel {
   }
 };
 
-//! Burns the charge cells whose lighting time has come (constant-volume explosion of each cell: the
+//! Burns the charge cells lit since the previous burn, in (burnt_until, t] (constant-volume explosion of each cell: the
 //! products at the explosive's density rho0 and detonation energy e0, at rest; their faces were walls at
 //! rest until now). A charge cell that the rock covers (the mesh's hole is a polygon inside the circle) burns
 //! empty. The cell's own ledger entry (4 per cell: products mass, detonation energy, and the mass
@@ -65,16 +64,15 @@ struct ChargeCoverKernel {
 struct ChargeBurnKernel {
   ChargeCells cells;
   Field2D<const std::uint8_t> active;  //!< the new mask
-  std::uint8_t* burnt;
   double* ledger;
+  double burnt_until;  //!< [s] the time of the previous burn: the cells lit by then have burnt
   double t, cell_area;
   ChargeProducts products;
   cip::GasStateView s;
   cip::MaterialView m;
   BLAST_HD void operator()(int i, int j) const {
     const index_t c = static_cast<index_t>(j) * cells.nx + i;
-    if (cells.charge[c] < 0 || burnt[c] || t < cells.burn_time[c]) return;
-    burnt[c] = 1;
+    if (cells.charge[c] < 0 || cells.burn_time[c] <= burnt_until || t < cells.burn_time[c]) return;
     if (!active(i, j)) return;  // under rock (the mesh's polygon cuts into the hole's circle): no explosive there
     double* led = ledger + 4 * c;
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
