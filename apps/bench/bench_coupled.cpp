@@ -72,7 +72,11 @@ int main(int argc, char** argv) {
     fdem::RockSolver rock(topo, fdem::RockMaterial::paper_table2(), fdem::RockOptions{});
     ibm::GasRockCoupler coupler(gas, rock, air);
     coupler.rock_to_gas();
-    auto one_step = [&] { coupler.step(std::min(gas.courant_dt(0.1), 0.9 * rock.stable_dt())); };
+    // After the first step the coupler has the signal rate (read with the rock's speed, one wait a step).
+    auto one_step = [&] {
+      const double rate = std::isfinite(coupler.signal_rate()) ? coupler.signal_rate() : gas.max_signal_rate();
+      coupler.step(std::min(0.1 / rate, 0.9 * rock.stable_dt()));
+    };
     for (int k = 0; k < warmup; ++k) one_step();
     KernelProfile& prof = KernelProfile::instance();
     prof.reset();
@@ -83,9 +87,11 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     prof.enable(false);
     prof.reset();  // and once more without the per-launch synchronisation
+    const LaunchCounts counts0 = LaunchCounts::instance();
     const auto t1 = std::chrono::steady_clock::now();
     for (int k = 0; k < steps; ++k) one_step();
     synchronize();
+    const LaunchCounts counts1 = LaunchCounts::instance();
     const double free_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     prof.enable(true);
     for (int k = 0; k < steps; ++k) one_step();  // the profile of record
@@ -98,13 +104,13 @@ int main(int argc, char** argv) {
         {"gas derivatives", {"cip.derivatives"}, 0, cells * 24 * 8},
         {"gas advection", {"cip.transport", "cip.advection"}, 0, cells * 24 * 8},
         {"gas boundary", {"cip.ghosts", "cip.boundary_outflow"}, 0, 4.0 * n * 2 * 24 * 8},
-        {"gas time step (signal rate)", {"cip.signal_rate"}, 0, cells * 4 * 8},
+        {"gas time step (signal rate)", {"cip.signal_rate", "ibm.step_scalars"}, 0, cells * 4 * 8},
         {"rock triangles", {"fdem.triangles"}, 0, tri * (35 * 8 + 3)},
         {"rock joints", {"fdem.joints"}, 0, joints * (30 * 8 + 16 + 12 * 8)},
         {"rock contact search", {"fdem.grid", "fdem.contact.count", "fdem.contact.fill"}, 0, 0},
         {"rock contact forces", {"fdem.contact"}, 0, tri * 12 * 8},
-        {"rock integration", {"fdem.nodes", "fdem.vmax"}, 0, nodes * 33 * 8},
-        {"coupling masks", {"ibm.cover", "ibm.cells"}, 0, cells * (2 * 4 + 1) + tri * 6 * 8},
+        {"rock integration", {"fdem.nodes", "fdem.vmax", "fdem.speed_peak"}, 0, nodes * 33 * 8},
+        {"coupling masks", {"ibm.cover", "ibm.cells", "ibm.clear_owner"}, 0, cells * (2 * 4 + 1) + tri * 6 * 8},
         {"coupling velocities", {"ibm.face_velocity"}, 0, cells * 2 * (8 + 1 + 4)},
         {"coupling pressures", {"ibm.edge_pressure"}, 0, 3 * tri * (8 + 8 + 1)},
     };
@@ -133,6 +139,8 @@ int main(int argc, char** argv) {
     long launches = 0;
     for (const auto& [label, e] : prof.entries()) launches += e.launches;
     std::printf("  launches through the profiled launchers: %.1f per step\n", double(launches) / steps);
+    std::printf("  LaunchCounts over the unprofiled steps: %.1f launches and %.1f host waits per step\n",
+                double(counts1.launches - counts0.launches) / steps, double(counts1.host_waits - counts0.host_waits) / steps);
     if (per_kernel)
       for (const auto& [label, e] : prof.entries())
         std::printf("    %-34s %10.4f ms/step %6.2f launches/step\n", label.c_str(), 1e3 * e.seconds / steps,

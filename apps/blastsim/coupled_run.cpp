@@ -302,7 +302,7 @@ class CoupledStepper : public Stepper {
   }
   void step(double dt) override {
     coupler_.step(dt, substeps_);  // rock -> gas, gas, gas -> rock, rock (throws InstabilityError on a non-finite rock)
-    rate_ = checked_signal_rate(gas_, c_.gas.output_directory);
+    rate_ = checked_signal_rate(gas_, c_.gas.output_directory, coupler_.signal_rate());
   }
   std::string progress_note() const override {
     const fdem::RockEnergies e = rock_.energies();

@@ -34,12 +34,15 @@ inline void check_fixed_dt_courant(double dt, double rate, double courant, const
 
 //! The gas's signal rate [1/s] for the next dt; an invalid state (+inf) stops the run with InstabilityError
 //! naming the quantity, step and place, before that state is written anywhere.
-inline double checked_signal_rate(cip::GasSolver& solver, const std::string& output_directory) {
-  const double r = solver.max_signal_rate();
+//! `r`: the rate when the caller has it already (a coupled step reads it with the rock's speed).
+inline double checked_signal_rate(cip::GasSolver& solver, const std::string& output_directory, double r) {
   if (!std::isfinite(r))
     throw InstabilityError(fmt::format("gas state invalid after step {} (t = {:.6e} s): {}; the last good output is in {}",
                                        solver.steps(), solver.time(), solver.describe_invalid_cell(), output_directory));
   return r;
+}
+inline double checked_signal_rate(cip::GasSolver& solver, const std::string& output_directory) {
+  return checked_signal_rate(solver, output_directory, solver.max_signal_rate());
 }
 
 //! Output state of one run: files, schedules and open CSV streams.

@@ -25,29 +25,33 @@ void GasSolver::transport_conservatively(double dt) {
   const Field2D<double> Ax = make_field_view(a_->alpha_flux_x, sh), Ay = make_field_view(a_->alpha_flux_y, sh);
   const Field2D<double> Wx = make_field_view(a_->volume_flux_x, sh), Wy = make_field_view(a_->volume_flux_y, sh);
   const GasMaterials& mat = materials_;
-  for_each_cell("cip.transport.flux_x", 0, g.nx + 1, 0, g.ny,
-                MassFluxKernel{0, s, v.active, Fx, Ex, dt, g.dx, g.dy, options_.limiter, mat, m, Mx, Ax, Wx});
-  for_each_cell("cip.transport.flux_y", 0, g.nx, 0, g.ny + 1,
-                MassFluxKernel{1, s, v.active, Fy, Ey, dt, g.dy, g.dx, options_.limiter, mat, m, My, Ay, Wy});
+  const bool fuse = options_.fuse_kernels;
+  const Limiter lim = options_.limiter;
+  for_each_cell_fused(
+      "cip.transport.flux", fuse,
+      cell_part("cip.transport.flux_x", IndexBox{0, g.nx + 1, 0, g.ny},
+                MassFluxKernel{0, s, v.active, Fx, Ex, dt, g.dx, g.dy, lim, mat, m, Mx, Ax, Wx}),
+      cell_part("cip.transport.flux_y", IndexBox{0, g.nx, 0, g.ny + 1},
+                MassFluxKernel{1, s, v.active, Fy, Ey, dt, g.dy, g.dx, lim, mat, m, My, Ay, Wy}));
   for_each_cell("cip.transport.cells", 0, g.nx, 0, g.ny,
                 CellFluxUpdateKernel{s, v.now, v.active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy, mat.two, m, Mx, My, Ax,
                                      Ay, Wx, Wy});
   if (mat.two) fill_material_ghosts(m, g, options_.boundaries);
   // Interior faces, and wall faces (held at rest, their incoming kinetic energy turned into heat). Outflow
   // faces are set by the ghost fill (characteristic condition); what they carry leaves the domain.
-  thrust::fill(thrust::device, a_->dissipation_u.begin(), a_->dissipation_u.end(), 0.0);
-  thrust::fill(thrust::device, a_->dissipation_v.begin(), a_->dissipation_v.end(), 0.0);
+  fill_device("cip.transport.clear_u", a_->dissipation_u, 0.0);
+  fill_device("cip.transport.clear_v", a_->dissipation_v, 0.0);
   const BoundaryConditions& bc = options_.boundaries;
   const bool wl = bc.kind(left) == BoundaryKind::wall, wr = bc.kind(right) == BoundaryKind::wall;
   const bool wb = bc.kind(bottom) == BoundaryKind::wall, wt = bc.kind(top) == BoundaryKind::wall;
-  for_each_cell("cip.transport.momentum_u", px || wl ? 0 : 1, wr ? g.nx + 1 : g.nx, 0, g.ny,
-                MomentumKernel{0, s, v.now, Fx, Fy, v.u_prescribed, v.u_imposed, Du,
-                                       make_field_view(a_->solid_work_u, sh), g.nx, g.ny, px, py, wl, wr, dt, g.dx, g.dy,
-                                       options_.limiter});
-  for_each_cell("cip.transport.momentum_v", 0, g.nx, py || wb ? 0 : 1, wt ? g.ny + 1 : g.ny,
-                MomentumKernel{1, s, v.now, Fx, Fy, v.v_prescribed, v.v_imposed, Dv,
-                                       make_field_view(a_->solid_work_v, sh), g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy,
-                                       options_.limiter});
+  for_each_cell_fused(
+      "cip.transport.momentum", fuse,
+      cell_part("cip.transport.momentum_u", IndexBox{px || wl ? 0 : 1, wr ? g.nx + 1 : g.nx, 0, g.ny},
+                MomentumKernel{0, s, v.now, Fx, Fy, v.u_prescribed, v.u_imposed, Du, make_field_view(a_->solid_work_u, sh),
+                               g.nx, g.ny, px, py, wl, wr, dt, g.dx, g.dy, lim}),
+      cell_part("cip.transport.momentum_v", IndexBox{0, g.nx, py || wb ? 0 : 1, wt ? g.ny + 1 : g.ny},
+                MomentumKernel{1, s, v.now, Fx, Fy, v.v_prescribed, v.v_imposed, Dv, make_field_view(a_->solid_work_v, sh),
+                               g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy, lim}));
   for_each_cell("cip.transport.energy", 0, g.nx, 0, g.ny,
                 EnergyUpdateKernel{v.now, v.active, rho_e, Du, Dv, make_field_view(a_->positivity_heat, sh), g.nx, g.ny, px, py,
                                    mat, m});

@@ -26,18 +26,30 @@ GasGrid GasGrid::from_box(int nx, int ny, double x0, double x1, double y0, doubl
 
 void GasSolver::accumulate_boundary_outflow(double dt) {
   const PaddedShape sh = grid_.padded_shape();
-  const TotalsSum f = reduce_sum(
-      "cip.boundary_outflow", 2 * static_cast<index_t>(grid_.nx + grid_.ny), TotalsSum{0, 0, 0, 0, 0, 0},
-      BoundaryFlowKernel{a_->starred.view(sh), make_field_view(a_->pressure, sh), make_field_view(a_->mass_flux_x, sh),
+  for_each_index(
+      "cip.boundary_outflow", 2 * static_cast<index_t>(grid_.nx + grid_.ny),
+      OutflowLedgerKernel{BoundaryFlowKernel{a_->starred.view(sh), make_field_view(a_->pressure, sh), make_field_view(a_->mass_flux_x, sh),
                          make_field_view(a_->mass_flux_y, sh), make_field_view(a_->energy_flux_x, sh),
                          make_field_view(a_->energy_flux_y, sh), make_field_view(a_->products_flux_x, sh),
                          make_field_view(a_->products_flux_y, sh), options_.transport == Transport::conservative,
-                         materials_.two, grid_, options_.boundaries});
-  outflow_.mass += dt * f.m;
-  outflow_.momentum_x += dt * f.mx;
-  outflow_.momentum_y += dt * f.my;
-  outflow_.energy += dt * f.ei;
-  outflow_.products_mass += dt * f.m1;
+                         materials_.two, grid_, options_.boundaries},
+                          device_ptr(a_->outflow_ledger), dt});
+}
+
+BoundaryOutflow GasSolver::boundary_outflow() const {
+  const double* l = device_ptr(a_->outflow_ledger);
+  const TotalsSum t = reduce_sum("cip.outflow_total", 2 * static_cast<index_t>(grid_.nx + grid_.ny),
+                                 TotalsSum{0, 0, 0, 0, 0, 0}, [=] BLAST_HD(index_t k) {
+                                   const double* e = l + kOutflowLedgerWidth * k;
+                                   return TotalsSum{e[0], e[1], e[2], e[3], 0.0, e[4]};
+                                 });
+  BoundaryOutflow out;
+  out.mass = t.m;
+  out.momentum_x = t.mx;
+  out.momentum_y = t.my;
+  out.energy = t.ei;
+  out.products_mass = t.m1;
+  return out;
 }
 
 namespace {
@@ -134,10 +146,10 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
   }
   time_ = 0.0;
   steps_ = 0;
-  outflow_ = BoundaryOutflow{};
-  thrust::fill(thrust::device, a_->solid_work_u.begin(), a_->solid_work_u.end(), 0.0);
-  thrust::fill(thrust::device, a_->solid_work_v.begin(), a_->solid_work_v.end(), 0.0);
-  thrust::fill(thrust::device, a_->positivity_heat.begin(), a_->positivity_heat.end(), 0.0);
+  fill_device("cip.clear_ledgers", a_->outflow_ledger, 0.0);
+  fill_device("cip.clear_ledgers", a_->solid_work_u, 0.0);
+  fill_device("cip.clear_ledgers", a_->solid_work_v, 0.0);
+  fill_device("cip.clear_ledgers", a_->positivity_heat, 0.0);
   apply_boundaries();
   // Derivatives: zero in uniform regions and next to jumps between them (the paper's Table 1), centred
   // differences where the initial data are smooth (zero there would cost CIP its order of accuracy).
@@ -156,12 +168,14 @@ BoundaryContext GasSolver::boundary_context() const {
           {device_ptr(a_->outflow_pressure), device_ptr(a_->outflow_velocity)}};
 }
 
-double GasSolver::max_signal_rate() const {
-  const GasStateReadView s = state();
+SignalRate GasSolver::signal_rate_kernel() const {
   const ImmersedBoundaryView ib = a_->immersed.view(grid_.padded_shape());
-  return reduce_max("cip.signal_rate", static_cast<index_t>(grid_.nx) * grid_.ny, 0.0,
-                    SignalRate{s, material_fields(), {ib.cell_active.data, ib.cell_active.shape}, materials_, grid_.nx, grid_.dx,
-                                       grid_.dy});
+  return SignalRate{state(), material_fields(), {ib.cell_active.data, ib.cell_active.shape}, materials_, grid_.nx,
+                    grid_.dx, grid_.dy};
+}
+
+double GasSolver::max_signal_rate() const {
+  return reduce_max("cip.signal_rate", static_cast<index_t>(grid_.nx) * grid_.ny, 0.0, signal_rate_kernel());
 }
 
 StepViews GasSolver::step_views() const {
@@ -192,20 +206,21 @@ void GasSolver::step(double dt) {
   for_each_index("cip.pressure.ghosts", 2 * static_cast<index_t>(g.nx + g.ny),
                  PressureGhostKernel{P, g.nx, g.ny, options_.boundaries});
   // 2. Non-advection phase: face velocities, then density and energy (paper eqs. 1-3).
-  for_each_cell("cip.face_velocity.u", 0, g.nx + 1, 0, g.ny,
-                FaceVelocityKernel{0, n, s.u.f, rho_n, Pc, active, u_pres, u_imp, g, ctx, dt});
-  for_each_cell("cip.face_velocity.v", 0, g.nx, 0, g.ny + 1,
-                FaceVelocityKernel{1, n, s.v.f, rho_n, Pc, active, v_pres, v_imp, g, ctx, dt});
+  const bool fuse = options_.fuse_kernels;
+  const IndexBox cells{0, g.nx, 0, g.ny}, x_faces{0, g.nx + 1, 0, g.ny}, y_faces{0, g.nx, 0, g.ny + 1};
+  for_each_cell_fused(
+      "cip.face_velocity", fuse,
+      cell_part("cip.face_velocity.u", x_faces, FaceVelocityKernel{0, n, s.u.f, rho_n, Pc, active, u_pres, u_imp, g, ctx, dt}),
+      cell_part("cip.face_velocity.v", y_faces, FaceVelocityKernel{1, n, s.v.f, rho_n, Pc, active, v_pres, v_imp, g, ctx, dt}));
   for_each_cell("cip.cell_nonadvection", 0, g.nx, 0, g.ny,
                 CellNonAdvectionKernel{options_.transport == Transport::conservative, n, s.rho.f, s.e.f, us, vs, Pc, active, dt, g.dx, g.dy});
   fill_ghosts(s, g, ctx);
   if (options_.transport == Transport::paper) accumulate_boundary_outflow(dt);
   // 3. Derivative update (Yabe, Xiao & Utsumi 2001).
-  for_each_cell("cip.derivatives.cell", 0, g.nx, 0, g.ny, CellDerivativeKernel{n, s, active, dt, g.dx, g.dy});
-  for_each_cell("cip.derivatives.u", 0, g.nx + 1, 0, g.ny,
-                FaceDerivativeKernel{0, n, s, u_pres, dt, g.dx, g.dy});
-  for_each_cell("cip.derivatives.v", 0, g.nx, 0, g.ny + 1,
-                FaceDerivativeKernel{1, n, s, v_pres, dt, g.dx, g.dy});
+  for_each_cell_fused("cip.derivatives", fuse,
+                      cell_part("cip.derivatives.cell", cells, CellDerivativeKernel{n, s, active, dt, g.dx, g.dy}),
+                      cell_part("cip.derivatives.u", x_faces, FaceDerivativeKernel{0, n, s, u_pres, dt, g.dx, g.dy}),
+                      cell_part("cip.derivatives.v", y_faces, FaceDerivativeKernel{1, n, s, v_pres, dt, g.dx, g.dy}));
   fill_ghosts(s, g, ctx);
   // 4. Transport. Conservative: values in flux form (conservative_transport.cpp); the paper's: values by
   // CIP. Either way the derivatives are advected by CIP with the updated velocity.
@@ -214,12 +229,12 @@ void GasSolver::step(double dt) {
     transport_conservatively(dt);
     accumulate_boundary_outflow(dt);
   }
-  for_each_cell("cip.advection.cell", 0, g.nx, 0, g.ny,
-                CellAdvectionKernel{s, n, active, dt, g.dx, g.dy, options_.limiter, conservative});
-  for_each_cell("cip.advection.u", 0, g.nx + 1, 0, g.ny,
-                FaceAdvectionKernel{0, s, n, u_pres, u_imp, dt, g.dx, g.dy, options_.limiter, conservative});
-  for_each_cell("cip.advection.v", 0, g.nx, 0, g.ny + 1,
-                FaceAdvectionKernel{1, s, n, v_pres, v_imp, dt, g.dx, g.dy, options_.limiter, conservative});
+  const Limiter lim = options_.limiter;
+  for_each_cell_fused(
+      "cip.advection", fuse,
+      cell_part("cip.advection.cell", cells, CellAdvectionKernel{s, n, active, dt, g.dx, g.dy, lim, conservative}),
+      cell_part("cip.advection.u", x_faces, FaceAdvectionKernel{0, s, n, u_pres, u_imp, dt, g.dx, g.dy, lim, conservative}),
+      cell_part("cip.advection.v", y_faces, FaceAdvectionKernel{1, s, n, v_pres, v_imp, dt, g.dx, g.dy, lim, conservative}));
   fill_ghosts(n, g, ctx);
   time_ += dt;
   ++steps_;
@@ -365,7 +380,6 @@ void GasSolver::write_checkpoint(CheckpointWriter& w) const {
   detail::GasArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v) { w.array(name, v); });
   w.value("gas.time", time_);
   w.value("gas.steps", steps_);
-  w.value("gas.outflow", outflow_);
 }
 
 double GasSolver::immersed_face_work() const {
@@ -391,7 +405,6 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   detail::GasArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, auto& v) { r.array(name, v, v.size()); });
   time_ = r.value<double>("gas.time");
   steps_ = r.value<long long>("gas.steps");
-  outflow_ = r.value<BoundaryOutflow>("gas.outflow");
   if (!std::isfinite(time_) || time_ < 0) r.fail("gas.time", "not a finite time >= 0");
   if (steps_ < 0) r.fail("gas.steps", "negative");
   // The material fields exist exactly in a two-material run (an empty record matches a one-gas case only).

@@ -98,6 +98,10 @@ struct GasArrays {
   BLASTSIM_GAS_OUTFLOW_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
   BLASTSIM_GAS_MATERIAL_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
   BLASTSIM_GAS_MATERIAL_WORK_ARRAYS(BLASTSIM_GAS_DEVICE_ARRAY)
+  //! What left through each boundary face since initialise() (OutflowReference order), kOutflowLedgerWidth
+  //! entries a face, summed only when asked (GasSolver::boundary_outflow()): the step never waits for it.
+  //! Checkpointed.
+  DeviceVector<double> outflow_ledger;
 
   MaterialView materials(PaddedShape s) { return {make_field_view(alpha, s), make_field_view(m1, s)}; }
 
@@ -117,6 +121,7 @@ struct GasArrays {
 #undef BLASTSIM_GAS_ASSIGN
     outflow_pressure.assign(boundary_faces, 0.0);
     outflow_velocity.assign(boundary_faces, 0.0);
+    outflow_ledger.assign(kOutflowLedgerWidth * boundary_faces, 0.0);
   }
 
   //! Calls fn(record name, array) for every array a checkpoint holds: the state with its derivatives, the
@@ -140,6 +145,7 @@ struct GasArrays {
     BLASTSIM_GAS_LEDGER_ARRAYS(BLASTSIM_GAS_VISIT)
     BLASTSIM_GAS_MATERIAL_ARRAYS(BLASTSIM_GAS_VISIT)
 #undef BLASTSIM_GAS_VISIT
+    fn("gas.outflow_ledger", a.outflow_ledger);
   }
 };
 

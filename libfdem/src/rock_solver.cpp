@@ -137,6 +137,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.grid.sorted_triangles.assign(triangles_, 0), a.grid.cell_key.assign(triangles_, 0);
   a.grid.cell_start.assign(1, 0), a.grid.cell_end.assign(1, 0);
   a.grid.neighbour_offset.assign(triangles_ + 1, 0), a.grid.neighbour_list.assign(1, 0);
+  a.speed_peak.assign(3 * triangles_, 0.0);
   if (options_.contact) rebuild_contact_grid();
 }
 
@@ -192,6 +193,7 @@ void RockSolver::rebuild_contact_grid() {
                       thrust::counting_iterator<int>(static_cast<int>(cells)), g.cell_start.begin());
   thrust::upper_bound(thrust::device, g.cell_key.begin(), g.cell_key.end(), thrust::counting_iterator<int>(0),
                       thrust::counting_iterator<int>(static_cast<int>(cells)), g.cell_end.begin());
+  for (int k = 0; k < 3; ++k) count_host_wait();  // the sort and the two searches block
   // Candidate lists (CSR): count, scan, fill; each triangle's list in a fixed order.
   g.neighbour_offset.resize(triangles_ + 1);
   NeighbourSearchKernel search{m,       device_ptr(g.sorted_triangles), device_ptr(g.cell_start), device_ptr(g.cell_end),
@@ -199,6 +201,7 @@ void RockSolver::rebuild_contact_grid() {
   for_each_index("fdem.contact.count", triangles_, search);
   thrust::exclusive_scan(thrust::device, g.neighbour_offset.begin(), g.neighbour_offset.end(), g.neighbour_offset.begin());
   const int total = g.neighbour_offset.back();
+  count_host_wait(), count_host_wait();  // the scan blocks, the host reads its last entry
   g.neighbour_list.resize(std::max(total, 1));
   search.offset = device_ptr(g.neighbour_offset);
   search.count = nullptr;
@@ -219,6 +222,7 @@ void RockSolver::build_contact_pairs() {
   for_each_index("fdem.grid.pair_count", triangles_, PairCountKernel{offset, list, device_ptr(p.pair_offset)});
   thrust::exclusive_scan(thrust::device, p.pair_offset.begin(), p.pair_offset.end(), p.pair_offset.begin());
   const int pairs = p.pair_offset.back();
+  for (int k = 0; k < 3; ++k) count_host_wait();  // the host writes an entry, the scan blocks, the host reads one
   pairs_ = pairs;
   const index_t slots = a.grid.neighbour_list.size();
   p.slot_pair.resize(slots);
@@ -235,31 +239,46 @@ void RockSolver::build_contact_pairs() {
 }
 
 void RockSolver::step(double dt) {
+  advance(dt, 1);
+  finish_motion(reduce_max("fdem.vmax", node_count(), 0.0, peak_speed_kernel()));
+}
+
+NodeSpeedPeak RockSolver::peak_speed_kernel() const { return NodeSpeedPeak{device_ptr(a_->speed_peak)}; }
+
+void RockSolver::advance(double dt, int substeps) {
+  if (substeps < 1) throw std::invalid_argument("RockSolver::advance: substeps must be at least 1");
+  if (pending_time_ != 0) throw std::logic_error("RockSolver::advance: finish_motion() of the previous advance missing");
   if (!(dt > 0) || dt > stable_dt_) {
     std::ostringstream os;
     os << "rock time step dt = " << dt << " s: must be in (0, " << stable_dt_
        << "] s, the stable step of the explicit scheme (elastic wave and joint/contact penalty springs)";
     throw InputError(os.str());
   }
-  if (options_.contact && 2 * travel_since_build_ > buffer_) rebuild_contact_grid();
-  triangle_forces(dt);
-  joint_forces();
-  contact_forces(dt);
-  update_nodes(dt);
-  time_ += dt;
-  ++steps_;
-  if (probes_ > 0)
-    for_each_index("fdem.probes", probes_,
-                   ProbePeakKernel{device_ptr(a_->probe_station), device_ptr(a_->nodes.vx), device_ptr(a_->nodes.vy),
-                                   device_ptr(a_->probe_peak), time_});
-  // Largest speed (infinite if any is not finite): drives the contact rebuild and catches instability.
-  const NodeMotion<Access::read> m = a_->nodes.read();
-  const double* vx = m.vx;
-  const double* vy = m.vy;
-  const double v_max = reduce_max("fdem.vmax", node_count(), 0.0, [=] BLAST_HD(index_t k) {
-    const double s = vx[k] * vx[k] + vy[k] * vy[k];
-    return s == s && s < 1e300 ? sqrt(s) : 1e308;
-  });
+  // The travel is known up to the last read; the substeps after the first are covered by the last speed.
+  const double ahead = last_speed_ * dt * (substeps - 1);
+  if (options_.contact && 2 * (travel_since_build_ + ahead) > buffer_) rebuild_contact_grid();
+  for (int k = 0; k < substeps; ++k) {
+    triangle_forces(dt);
+    joint_forces();
+    contact_forces(dt);
+    update_nodes(dt);
+    time_ += dt;
+    ++steps_;
+    if (probes_ > 0)
+      for_each_index("fdem.probes", probes_,
+                     ProbePeakKernel{device_ptr(a_->probe_station), device_ptr(a_->nodes.vx), device_ptr(a_->nodes.vy),
+                                     device_ptr(a_->probe_peak), time_});
+    // Largest speed (flagged if any is not finite): drives the contact rebuild and catches instability.
+    for_each_index("fdem.speed_peak", node_count(),
+                   SpeedPeakKernel{device_ptr(a_->nodes.vx), device_ptr(a_->nodes.vy), device_ptr(a_->speed_peak)});
+  }
+  pending_time_ = dt * substeps;
+}
+
+void RockSolver::finish_motion(double v_max) {
+  fill_device("fdem.speed_peak.clear", a_->speed_peak, 0.0);
+  const double advanced = pending_time_;
+  pending_time_ = 0;
   if (!(v_max < 1e300)) {
     const std::vector<double> hx = to_host(a_->nodes.vx), hy = to_host(a_->nodes.vy);
     size_t bad = 0;
@@ -271,7 +290,8 @@ void RockSolver::step(double dt) {
                            std::to_string(time_) + " s), node " + std::to_string(bad) + " of triangle " +
                            std::to_string(bad / 3) + where.str());
   }
-  travel_since_build_ += v_max * dt;
+  travel_since_build_ += v_max * advanced;
+  last_speed_ = v_max;
 }
 
 // Munjiza 2004 ch. 2: constant-strain triangles.
@@ -579,8 +599,8 @@ RockSnapshot RockSolver::snapshot() const {
 void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.counts", std::array<int, 2>{triangles_, joints_});
   detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v, bool) { w.array(name, v); });
-  w.value("rock.scalars", std::array<double, 9>{time_, pressure_scale_, dt_prev_, cell_size_, grid_x0_, grid_y0_, buffer_,
-                                                travel_since_build_, stable_dt_});
+  w.value("rock.scalars", std::array<double, 10>{time_, pressure_scale_, dt_prev_, cell_size_, grid_x0_, grid_y0_, buffer_,
+                                                 travel_since_build_, stable_dt_, last_speed_});
   w.value("rock.integers", std::array<long, 4>{steps_, rebuilds_, grid_nx_, grid_ny_});
   w.array("rock.probes.peak", a_->probe_peak);
 }
@@ -604,12 +624,12 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
                      std::to_string(joints_));
   detail::RockArrays::for_each_checkpoint_array(
       *a_, [&](const std::string& name, auto& v, bool fixed) { r.array(name, v, fixed ? v.size() : 0); });
-  const std::array<double, 9> d = r.value<std::array<double, 9>>("rock.scalars");
+  const std::array<double, 10> d = r.value<std::array<double, 10>>("rock.scalars");
   for (size_t k = 0; k < d.size(); ++k)  // all finite; all but the grid origin (4, 5) non-negative
     if (!std::isfinite(d[k]) || (k != 4 && k != 5 && d[k] < 0)) r.fail("rock.scalars", "a value is not finite or negative");
   if (d[8] != stable_dt_) r.fail("rock.scalars", "its stable step differs from this mesh's (another mesh?)");
   time_ = d[0], pressure_scale_ = d[1], dt_prev_ = d[2], cell_size_ = d[3], grid_x0_ = d[4], grid_y0_ = d[5];
-  buffer_ = d[6], travel_since_build_ = d[7];
+  buffer_ = d[6], travel_since_build_ = d[7], last_speed_ = d[9];
   const std::array<long, 4> n = r.value<std::array<long, 4>>("rock.integers");
   const long min_cells = options_.contact ? 1 : 0;  // without contact no grid is ever built
   if (n[0] < 0 || n[1] < 0 || n[2] < min_cells || n[3] < min_cells || n[2] > (1L << 20) || n[3] > (1L << 20))

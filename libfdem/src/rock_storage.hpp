@@ -68,6 +68,8 @@ struct RockArrays {
   DeviceVector<ProbeStation> probe_station;
   DeviceVector<ProbePeak> probe_peak;
   DeviceVector<Vec2> probe_velocity;  // work array of probe_samples()
+  // largest speed of each node since the last finish_motion() [m/s]; zero between steps, not checkpointed
+  DeviceVector<double> speed_peak;
   // work arrays of fragment_labels() (two label buffers), sized on first use
   DeviceVector<int> label_a, label_b;
 

@@ -75,8 +75,8 @@ GasRockCoupler::~GasRockCoupler() = default;
 void GasRockCoupler::rock_to_gas() {
   const cip::GasGrid g = gas_.grid();
   const PaddedShape sh = g.padded_shape();
-  thrust::fill(thrust::device, a_->u_owner.begin(), a_->u_owner.end(), -1);
-  thrust::fill(thrust::device, a_->v_owner.begin(), a_->v_owner.end(), -1);
+  fill_device("ibm.clear_owner.u", a_->u_owner, -1);
+  fill_device("ibm.clear_owner.v", a_->v_owner, -1);
   const fdem::RockView rock = rock_.view();
   const Field2D<int> uo = make_field_view(a_->u_owner, sh), vo = make_field_view(a_->v_owner, sh);
   for_each_index("ibm.cover", rock.triangles, CoverKernel{rock, g, uo, vo});
@@ -270,6 +270,7 @@ void GasRockCoupler::apply_crack_deposits() {
                  CrackDepositKeyKernel{device_ptr(a_->junction_cell), device_ptr(a_->handover_cell), keys, nj});
   thrust::sequence(thrust::device, a_->order.begin(), a_->order.end());
   thrust::stable_sort_by_key(thrust::device, a_->keys.begin(), a_->keys.end(), a_->order.begin());
+  count_host_wait();  // the sequence and the sort block
   const cip::GasGrid g = gas_.grid();
   for_each_index("ibm.crack.deposit", records,
                  CrackDepositKernel{keys, device_ptr(a_->order), crack_->network().deposit, device_ptr(a_->handover), nj,
@@ -285,9 +286,15 @@ void GasRockCoupler::step(double dt, int rock_substeps) {
   gas_.step(dt);
   if (crack_) crack_mouths(), crack_->advance(dt), apply_crack_deposits();
   gas_to_rock();
-  const double rock_dt = dt / rock_substeps;
-  for (int k = 0; k < rock_substeps; ++k) rock_.step(rock_dt);
+  rock_.advance(dt / rock_substeps, rock_substeps);
   fire_due_charges();  // before the next step chooses its dt: the products' sound speed must set it
+  const cip::GasGrid& g = gas_.grid();
+  const index_t cells = static_cast<index_t>(g.nx) * g.ny;
+  const StepScalars s = reduce_with("ibm.step_scalars", cells + rock_.node_count(), StepScalars{0.0, 0.0},
+                                    StepScalarsOf{gas_.signal_rate_kernel(), rock_.peak_speed_kernel(), cells},
+                                    MaxOfStepScalars{});
+  signal_rate_ = s.signal_rate;
+  rock_.finish_motion(s.rock_speed);  // throws InstabilityError on a non-finite rock
 }
 
 bool GasRockCoupler::charges_due(double t) const {

@@ -211,7 +211,7 @@ std::vector<double> CrackGas::apertures() const { return to_host(a_->aperture); 
 std::vector<double> CrackGas::volumes() const { return to_host(a_->volume); }
 std::vector<ChannelConserved> CrackGas::deposits() const { return to_host(a_->deposit); }
 void CrackGas::clear_deposits() {
-  thrust::fill(thrust::device, a_->deposit.begin(), a_->deposit.end(), ChannelConserved{0, 0, 0, 0, 0});
+  fill_device("crack.clear_deposits", a_->deposit, ChannelConserved{0, 0, 0, 0, 0});
 }
 
 void CrackGas::write_checkpoint(CheckpointWriter& w) const {

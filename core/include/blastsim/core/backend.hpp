@@ -9,14 +9,19 @@
 #include "blastsim/core/field2d.hpp"
 #include "blastsim/core/macros.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <climits>
 #include <map>
 #include <string>
 #include <vector>
 
 #include <thrust/device_vector.h>
 #include <thrust/execution_policy.h>
+#if defined(__CUDACC__)
+#include <thrust/system/cuda/execution_policy.h>
+#endif
 #include <thrust/for_each.h>
 #include <thrust/functional.h>
 #include <thrust/host_vector.h>
@@ -70,12 +75,42 @@ class KernelProfile {
   std::map<std::string, Entry> entries_;
 };
 
+//! How many kernels the launchers below started and how many times the host waited for the device
+//! (a reduction's result, a copy to the host, a blocking sort or scan), counted on every backend alike
+//! so that a test on the CPU shows what a GPU step does: the step loop's goal is one wait a step, for
+//! the value that sets dt. Host threads only; never reset while a step runs.
+struct LaunchCounts {
+  long launches = 0;
+  long host_waits = 0;
+  static LaunchCounts& instance() {
+    static LaunchCounts c;
+    return c;
+  }
+};
+//! Records a blocking call made outside the launchers (a Thrust sort or scan on the device policy).
+inline void count_host_wait() { ++LaunchCounts::instance().host_waits; }
+
+namespace detail {
+//! The policy of the launchers: on CUDA the launch returns at once (`par_nosync`: the kernels of a step
+//! queue on the default stream in order, and the host waits only where it reads a result); the Thrust
+//! default (`thrust::device`) would wait for every kernel to finish. On host threads every call returns
+//! when its work is done.
+inline auto launch_policy() {
+#if defined(__CUDACC__)
+  return thrust::cuda::par_nosync;
+#else
+  return thrust::device;
+#endif
+}
+}  // namespace detail
+
 //! Runs f(i) for i in [0, n). `label` names the kernel for profilers and error messages.
 template <class F>
 void for_each_index(const char* label, index_t n, F f) {
   if (n <= 0) return;
+  ++LaunchCounts::instance().launches;
   KernelProfile::instance().time(label, [&] {
-    thrust::for_each_n(thrust::device, thrust::counting_iterator<index_t>(0), n, f);
+    thrust::for_each_n(detail::launch_policy(), thrust::counting_iterator<index_t>(0), n, f);
   });
 }
 
@@ -106,10 +141,81 @@ void for_each_cell(const char* label, int i0, int i1, int j0, int j1, F f) {
   for_each_index(label, static_cast<index_t>(ni) * nj, detail::Flatten2D<F>{i0, j0, ni, f});
 }
 
+//! A box of (i, j) indices, [i0, i1) x [j0, j1).
+struct IndexBox {
+  int i0, i1, j0, j1;
+  BLAST_HD bool contains(int i, int j) const { return i >= i0 && i < i1 && j >= j0 && j < j1; }
+};
+
+//! One kernel of a group that may be fused (for_each_cell_fused()): its label, its index box, its functor.
+template <class F>
+struct CellPart {
+  const char* label;
+  IndexBox box;
+  F f;
+};
+template <class F>
+CellPart<F> cell_part(const char* label, IndexBox box, F f) {
+  return {label, box, f};
+}
+
+namespace detail {
+template <class... F>
+struct FusedCells;
+template <class F>
+struct FusedCells<F> {
+  IndexBox box;
+  F f;
+  BLAST_HD void operator()(int i, int j) const {
+    if (box.contains(i, j)) f(i, j);
+  }
+};
+template <class F, class G, class... R>
+struct FusedCells<F, G, R...> {
+  IndexBox box;
+  F f;
+  FusedCells<G, R...> rest;
+  BLAST_HD void operator()(int i, int j) const {
+    if (box.contains(i, j)) f(i, j);
+    rest(i, j);
+  }
+};
+template <class F>
+FusedCells<F> fuse_parts(const CellPart<F>& p) {
+  return {p.box, p.f};
+}
+template <class F, class G, class... R>
+FusedCells<F, G, R...> fuse_parts(const CellPart<F>& p, const CellPart<G>& q, const CellPart<R>&... r) {
+  return {p.box, p.f, fuse_parts(q, r...)};
+}
+}  // namespace detail
+
+//! Runs a group of independent kernels (none reads what another writes) over their index boxes: with `fuse`,
+//! as one kernel labelled `label` over the boxes' bounding box, each thread calling every part whose box holds
+//! its (i, j) (one launch, and the arrays the parts share are read once from memory); without, as separate
+//! launches under their own labels. Both give the same bytes: each part computes the same values either way.
+template <class... F>
+void for_each_cell_fused(const char* label, bool fuse, const CellPart<F>&... parts) {
+  if (!fuse) {
+    (for_each_cell(parts.label, parts.box.i0, parts.box.i1, parts.box.j0, parts.box.j1, parts.f), ...);
+    return;
+  }
+  IndexBox all{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+  const IndexBox boxes[] = {parts.box...};
+  for (const IndexBox& b : boxes) {
+    if (b.i0 >= b.i1 || b.j0 >= b.j1) continue;  // an empty part widens nothing
+    all.i0 = std::min(all.i0, b.i0), all.i1 = std::max(all.i1, b.i1);
+    all.j0 = std::min(all.j0, b.j0), all.j1 = std::max(all.j1, b.j1);
+  }
+  for_each_cell(label, all.i0, all.i1, all.j0, all.j1, detail::fuse_parts(parts...));
+}
+
 //! op-reduction of f(k) over k in [0, n), starting from init (the two reductions below).
 template <class T, class F, class Op>
 T reduce_with(const char* label, index_t n, T init, F f, Op op) {
   T out = init;
+  ++LaunchCounts::instance().launches;
+  ++LaunchCounts::instance().host_waits;  // the host reads the result
   KernelProfile::instance().time(label, [&] {
     out = thrust::transform_reduce(thrust::device, thrust::counting_iterator<index_t>(0),
                                    thrust::counting_iterator<index_t>(n), detail::Transformed<F, T>{f}, init, op);
@@ -156,9 +262,25 @@ Field2D<const T> make_field_view(const DeviceVector<T>& v, PaddedShape s) {
   return Field2D<const T>{device_ptr(v), s};
 }
 
-//! Explicit copy to host memory (the only way host code reads device data).
+namespace detail {
+template <class T>
+struct FillWith {
+  T* out;
+  T value;
+  BLAST_HD void operator()(index_t k) const { out[k] = value; }
+};
+}  // namespace detail
+
+//! Sets every element of v to value, as a kernel like any other (it does not make the host wait).
+template <class T>
+void fill_device(const char* label, DeviceVector<T>& v, T value) {
+  for_each_index(label, static_cast<index_t>(v.size()), detail::FillWith<T>{device_ptr(v), value});
+}
+
+//! Explicit copy to host memory (the only way host code reads device data; the host waits for it).
 template <class T>
 std::vector<T> to_host(const DeviceVector<T>& v) {
+  count_host_wait();
   std::vector<T> out(v.size());
   if (!v.empty()) thrust::copy(v.begin(), v.end(), out.begin());  // (an empty range has no data pointer)
   return out;

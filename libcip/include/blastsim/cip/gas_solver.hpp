@@ -4,6 +4,7 @@
 
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/cip/gas_state.hpp"
+#include "blastsim/cip/gas_step_kernels.hpp"
 #include "blastsim/cip/gas_types.hpp"
 #include "blastsim/cip/grid.hpp"
 
@@ -71,6 +72,9 @@ class GasSolver {
   //! max over active cells of max((|u_c| + c)/dx, (|v_c| + c)/dy) [1/s]; +infinity when any active cell
   //! holds a non-finite or non-positive density or internal energy (see describe_invalid_cell()).
   double max_signal_rate() const;
+  //! Device functor: the signal rate of cell k (k = j nx + i) as max_signal_rate() reduces it, for callers that
+  //! fuse it with a reduction of their own (one wait for the host instead of two).
+  SignalRate signal_rate_kernel() const;
   //! Largest dt [s] with Courant number `courant`: courant / max_signal_rate().
   double courant_dt(double courant) const { return courant / max_signal_rate(); }
 
@@ -79,8 +83,9 @@ class GasSolver {
 
   //! Totals over the active cells whose centres lie in `region` (default: the whole grid).
   GasTotals totals(const CellRegion& region = {}) const;
-  //! Cumulative flow out through the outer boundary since initialise() (accumulated every step).
-  const BoundaryOutflow& boundary_outflow() const { return outflow_; }
+  //! Cumulative flow out through the outer boundary since initialise(): kept per boundary face on the
+  //! device every step, summed here (the host waits for the sum).
+  BoundaryOutflow boundary_outflow() const;
   //! Cumulative energy [J/m] that immersed (prescribed) faces gave the gas: where setting such a face to the
   //! solid's velocity leaves its dual cell a negative kinetic-energy balance, the deficit is not taken from
   //! the gas's internal energy but counted here (conservative transport; docs/gas-solver.md). A coupled
@@ -114,7 +119,6 @@ class GasSolver {
   std::unique_ptr<detail::GasArrays> a_;  // every device array (gas_storage.hpp)
   double time_ = 0.0;
   long long steps_ = 0;
-  BoundaryOutflow outflow_;
 };
 
 //! Marks a fixed solid through the immersed-boundary input: faces whose point lies inside get velocity 0,

@@ -420,4 +420,21 @@ struct BoundaryFlowKernel {
   }
 };
 
+//! Adds dt times what crosses boundary face k (BoundaryFlowKernel) to that face's outflow-ledger entries
+//! (kOutflowLedgerWidth a face): one thread a face, so no atomics, and the ledger stays on the device.
+struct OutflowLedgerKernel {
+  BoundaryFlowKernel flow;
+  double* ledger;
+  double dt;
+  BLAST_HD void operator()(index_t k) const {
+    const TotalsSum f = flow(k);
+    double* l = ledger + kOutflowLedgerWidth * k;
+    l[0] += dt * f.m;
+    l[1] += dt * f.mx;
+    l[2] += dt * f.my;
+    l[3] += dt * f.ei;
+    l[4] += dt * f.m1;
+  }
+};
+
 }  // namespace blastsim::cip

@@ -38,6 +38,10 @@ struct GasSolverOptions {
   ArtificialViscosity viscosity;
   Limiter limiter = Limiter::minmax;
   Transport transport = Transport::conservative;
+  //! Launch each group of independent kernels of a step (face velocities, mass fluxes, momentum, derivatives,
+  //! advection) as one kernel (for_each_cell_fused()); false launches them one by one. The bytes are the same
+  //! either way (tests/cip/test_fused_step.cpp); false is for that test and for benchmarks.
+  bool fuse_kernels = true;
 };
 
 //! Primitive state at a point, used to initialise the grid.
@@ -98,6 +102,8 @@ struct BoundaryOutflow {
   double energy = 0;      //!< [J/m] internal + kinetic energy carried out, plus pressure work
   double products_mass = 0;  //!< [kg/m] of detonation products carried out
 };
+//! Entries a boundary face keeps in the solver's outflow ledger: mass, x- and y-momentum, energy, products mass.
+constexpr int kOutflowLedgerWidth = 5;
 
 //! Cell-centred copy of the state on the host (i fastest), for output.
 struct HostGasFields {

@@ -9,6 +9,7 @@
 //! The arrays live behind the class (rock_fields.hpp lists them), so this header needs no backend headers.
 #pragma once
 
+#include "blastsim/fdem/rock_step_kernels.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
@@ -59,8 +60,20 @@ class RockSolver {
   double stable_dt() const { return stable_dt_; }
 
   //! Advances by dt [s]. Throws InputError if dt > stable_dt(), InstabilityError on a non-finite state.
-  //! One step = triangle_forces(), joint_forces(), contact_forces(), update_nodes(), then the speed check.
+  //! One step = triangle_forces(), joint_forces(), contact_forces(), update_nodes(), then the speed check:
+  //! advance(dt, 1), then finish_motion() with the largest node speed (the host waits for it).
   void step(double dt);
+  //! Advances by `substeps` steps of dt [s] without reading anything back (the host does not wait). The
+  //! contact broad phase is rebuilt first where the nodes may travel half its buffer before the next read
+  //! (the travel so far plus, over the substeps after the first, the last speed read). Each substep keeps
+  //! every node's largest speed; the caller then reduces peak_speed_kernel() over node_count() nodes (alone,
+  //! or fused with its own reduction) and passes the maximum to finish_motion() before the next advance().
+  void advance(double dt, int substeps);
+  //! Ends an advance(): InstabilityError if `v_max` [m/s] flags a non-finite speed, else the broad phase's
+  //! travel grows by v_max times the time advanced; clears the speed peaks (a kernel, no wait).
+  void finish_motion(double v_max);
+  //! Device functor: node k's largest speed since the last finish_motion() (1e308 if not finite).
+  NodeSpeedPeak peak_speed_kernel() const;
 
   // --- the phases of step(), public for benchmarks and profiling (call them in this order) ---
   void triangle_forces(double dt);  //!< internal forces, stresses, damping, edge pressures (one thread per triangle)
@@ -161,6 +174,8 @@ class RockSolver {
   int pairs_ = 0;
   int probes_ = 0;
   double buffer_ = 0, travel_since_build_ = 0;
+  double last_speed_ = 0;    // largest node speed of the last finish_motion() [m/s]
+  double pending_time_ = 0;  // time advanced since the last finish_motion() [s]
 };
 
 }  // namespace blastsim::fdem

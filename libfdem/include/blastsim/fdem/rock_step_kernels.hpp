@@ -402,6 +402,30 @@ BLAST_HD inline Vec2 viscous_boundary_velocity(double m, double dt, const Mat2& 
   return {m * (inv.a * v_free.x + inv.b * v_free.y), m * (inv.c * v_free.x + inv.d * v_free.y)};
 }
 
+
+//! A node's speed [m/s], or 1e308 where it is not finite (so a maximum over nodes flags instability).
+BLAST_HD inline double node_speed_or_flag(double vx, double vy) {
+  const double s = vx * vx + vy * vy;
+  return s == s && s < 1e300 ? sqrt(s) : 1e308;
+}
+
+//! Keeps each node's largest speed over the substeps since the last read (RockSolver::advance()): one
+//! thread a node, so the host reads one maximum after several substeps instead of one after each.
+struct SpeedPeakKernel {
+  const double* vx;
+  const double* vy;
+  double* peak;
+  BLAST_HD void operator()(index_t n) const {
+    const double s = node_speed_or_flag(vx[n], vy[n]);
+    peak[n] = s > peak[n] ? s : peak[n];
+  }
+};
+
+//! Node n's peak speed, for a maximum over the nodes (RockSolver::peak_speed_kernel()).
+struct NodeSpeedPeak {
+  const double* peak;
+  BLAST_HD double operator()(index_t n) const { return peak[n]; }
+};
 //! Node update (symplectic Euler, docs/fdem-solver.md): gathers the node's forces (its triangle, the joints
 //! on its two edges, contact, pressure on its triangle's exposed edges, gravity), takes its viscous-boundary
 //! dashpots implicitly, applies prescribed velocities, moves the node, and accumulates the work of each kind of

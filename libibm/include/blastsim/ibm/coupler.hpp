@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace blastsim::ibm {
@@ -88,8 +89,13 @@ class GasRockCoupler {
   //! dt / rock_substeps under those edge pressures (1: the paper's single dt; more: the rock subcycles a gas
   //! step longer than its stable step, docs/coupling.md), then fire_due_charges(). With crack gas: after rock_to_gas() the cracks'
   //! geometry, after the gas step their mouths (from the cells' new gas), their own steps (as many as their
-  //! Courant limit needs) and what they gave to or took from the grid cells.
+  //! Courant limit needs) and what they gave to or took from the grid cells. The host waits once, at the end,
+  //! for the gas's signal rate and the rock's largest speed in one reduction (signal_rate()); without crack gas
+  //! and charges no other value crosses to the host.
   void step(double dt, int rock_substeps = 1);
+  //! The gas's largest signal rate [1/s] after the last step() (+infinity on an invalid gas state), as
+  //! cip::GasSolver::max_signal_rate() gives it; NaN before the first step.
+  double signal_rate() const { return signal_rate_; }
 
   //! Gives every broken joint its own gas (docs/coupling.md "Gas in the cracks"): a 1-D channel network on the
   //! broken joints, joined at the mesh vertices, opening into the grid gas where a junction lies in an active
@@ -151,6 +157,7 @@ class GasRockCoupler {
   ChargeProducts products_;
   std::vector<std::array<double, 2>> charge_window_;  // per charge: its first and last lighting time [s]
   double burnt_until_ = 0;  // gas time of the last rock_to_gas() that burnt (every cell lit by then is burnt)
+  double signal_rate_ = std::numeric_limits<double>::quiet_NaN();  // the gas's, read with the rock's speed
   bool charges_due(double t) const;
   void crack_geometry();
   void crack_mouths();

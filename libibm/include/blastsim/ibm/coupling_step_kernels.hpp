@@ -7,6 +7,7 @@
 
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/cip/gas_state.hpp"
+#include "blastsim/cip/gas_step_kernels.hpp"
 #include "blastsim/cip/gas_types.hpp"
 #include "blastsim/cip/grid.hpp"
 #include "blastsim/core/atomic.hpp"
@@ -461,6 +462,29 @@ struct CrackDepositKernel {
       materials.alpha(i, j) = (materials.alpha(i, j) * m_old + sum.am) / m_new;
       materials.m1(i, j) += sum.m1 / cell_area;
     }
+  }
+};
+
+//! The two values the host reads after a coupled step (GasRockCoupler::step()): the gas's largest signal rate
+//! [1/s] (the next dt) and the rock's largest node speed over the step's substeps [m/s] (contact rebuild,
+//! instability check), in one reduction, so the host waits once a step.
+struct StepScalars {
+  double signal_rate, rock_speed;
+};
+struct StepScalarsOf {
+  cip::SignalRate gas;
+  fdem::NodeSpeedPeak rock;
+  index_t cells;
+  BLAST_HD StepScalars operator()(index_t k) const {
+    return k < cells ? StepScalars{gas(k), 0.0} : StepScalars{0.0, rock(k - cells)};
+  }
+};
+//! Componentwise maximum (order-independent: the same bits on any reduction tree; the flags for a non-finite
+//! state, +infinity and 1e308, win as they do in each solver's own reduction).
+struct MaxOfStepScalars {
+  BLAST_HD StepScalars operator()(const StepScalars& a, const StepScalars& b) const {
+    return {a.signal_rate > b.signal_rate ? a.signal_rate : b.signal_rate,
+            a.rock_speed > b.rock_speed ? a.rock_speed : b.rock_speed};
   }
 };
 
