@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<int, double>> cases{{280, 0.03}, {560, 0.015}};
   int steps = 20, warmup = 40;
   bool per_kernel = false;
+  cip::KernelFusion fusion = cip::KernelFusion::backend_default;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--cases=", 0) == 0) {  // N:H,N:H,...
@@ -51,10 +52,16 @@ int main(int argc, char** argv) {
       warmup = std::stoi(arg.substr(9));
     } else if (arg == "--kernels") {
       per_kernel = true;
+    } else if (arg == "--fused") {
+      fusion = cip::KernelFusion::fused;
+    } else if (arg == "--separate") {
+      fusion = cip::KernelFusion::separate;
     } else {
-      std::fprintf(stderr, "usage: %s [--cases=N:H,...] [--steps=N] [--warmup=N] [--kernels]\n"
+      std::fprintf(stderr, "usage: %s [--cases=N:H,...] [--steps=N] [--warmup=N] [--kernels] [--fused | --separate]\n"
                            "  N: gas cells per side of the 2.24 m grid; H: triangle size [m] (paper: 5001:0.0095)\n"
-                           "  --kernels: also every kernel's time and launches per step\n",
+                           "  --kernels: also every kernel's time and launches per step\n"
+                           "  --fused, --separate: the gas step's kernel groups as one launch each, or one by one\n"
+                           "    (default: fused on a GPU, separate on host threads)\n",
                    argv[0]);
       return 2;
     }
@@ -65,7 +72,9 @@ int main(int argc, char** argv) {
   for (const auto& [n, h] : cases) {
     const double w = 1.12;
     const cip::GasPoint air{1.20, 2.09e5, 0, 0}, hole_gas{163.0, 4.29e5, 0, 0};
-    cip::GasSolver gas(cip::GasGrid::from_box(n, n, -w, w, -w, w), cip::EquationOfState::ideal(1.4));
+    cip::GasSolverOptions gas_options;
+    gas_options.fusion = fusion;
+    cip::GasSolver gas(cip::GasGrid::from_box(n, n, -w, w, -w, w), cip::EquationOfState::ideal(1.4), gas_options);
     const double r_fill = 0.05 + 1.5 * 2 * w / n;
     gas.initialise([&](double x, double y) { return x * x + y * y < r_fill * r_fill ? hole_gas : air; });
     const fdem::FdemTopology topo = fdem::build_topology(fdem::ring_disc_with_hole(0, 0, 0.93, 0.05, h).mesh);

@@ -25,7 +25,7 @@ void GasSolver::transport_conservatively(double dt) {
   const Field2D<double> Ax = make_field_view(a_->alpha_flux_x, sh), Ay = make_field_view(a_->alpha_flux_y, sh);
   const Field2D<double> Wx = make_field_view(a_->volume_flux_x, sh), Wy = make_field_view(a_->volume_flux_y, sh);
   const GasMaterials& mat = materials_;
-  const bool fuse = options_.fuse_kernels;
+  const bool fuse = fuse_kernels();
   const Limiter lim = options_.limiter;
   for_each_cell_fused(
       "cip.transport.flux", fuse,

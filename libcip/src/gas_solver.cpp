@@ -178,6 +178,11 @@ double GasSolver::max_signal_rate() const {
   return reduce_max("cip.signal_rate", static_cast<index_t>(grid_.nx) * grid_.ny, 0.0, signal_rate_kernel());
 }
 
+bool GasSolver::fuse_kernels() const {
+  if (options_.fusion == KernelFusion::backend_default) return kBackendIsGpu;
+  return options_.fusion == KernelFusion::fused;
+}
+
 StepViews GasSolver::step_views() const {
   const ImmersedBoundaryView ib = a_->immersed.view(grid_.padded_shape());
   return {a_->state.view(grid_.padded_shape()), a_->starred.view(grid_.padded_shape()), ib.cell_active, ib.u_prescribed, ib.v_prescribed,
@@ -206,7 +211,7 @@ void GasSolver::step(double dt) {
   for_each_index("cip.pressure.ghosts", 2 * static_cast<index_t>(g.nx + g.ny),
                  PressureGhostKernel{P, g.nx, g.ny, options_.boundaries});
   // 2. Non-advection phase: face velocities, then density and energy (paper eqs. 1-3).
-  const bool fuse = options_.fuse_kernels;
+  const bool fuse = fuse_kernels();
   const IndexBox cells{0, g.nx, 0, g.ny}, x_faces{0, g.nx + 1, 0, g.ny}, y_faces{0, g.nx, 0, g.ny + 1};
   for_each_cell_fused(
       "cip.face_velocity", fuse,

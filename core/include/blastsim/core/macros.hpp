@@ -28,6 +28,13 @@ BLAST_HD inline double max_of(double a, double b) { return a < b ? b : a; }
 
 //! Name of the backend this build's kernels run on, for logs and benchmark reports. Correct in host-only
 //! translation units too (the build defines BLASTSIM_BACKEND_CUDA for a CUDA build).
+//! True where the kernels run on a GPU (the CUDA backend).
+#if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
+constexpr bool kBackendIsGpu = true;
+#else
+constexpr bool kBackendIsGpu = false;
+#endif
+
 inline const char* backend_name() {
 #if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
   return "cuda";

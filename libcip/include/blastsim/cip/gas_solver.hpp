@@ -111,6 +111,7 @@ class GasSolver {
  private:
   BoundaryContext boundary_context() const;
   StepViews step_views() const;
+  bool fuse_kernels() const;  // options_.fusion resolved for this backend
   void transport_conservatively(double dt);
   void accumulate_boundary_outflow(double dt);
   GasGrid grid_;

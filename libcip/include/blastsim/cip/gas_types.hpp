@@ -33,15 +33,23 @@ inline ArtificialViscosity recommended_viscosity(Transport t) {
   return t == Transport::paper ? ArtificialViscosity{1.0, 2.0} : ArtificialViscosity{0.5, 1.0};
 }
 
+//! GasSolverOptions::fusion.
+enum class KernelFusion {
+  backend_default,  //!< fused on a GPU (fewer launches, shared arrays read once), separate on host threads
+                    //!< (faster there: fewer arrays streamed at once; docs/performance.md)
+  fused,
+  separate
+};
+
 struct GasSolverOptions {
   BoundaryConditions boundaries;
   ArtificialViscosity viscosity;
   Limiter limiter = Limiter::minmax;
   Transport transport = Transport::conservative;
-  //! Launch each group of independent kernels of a step (face velocities, mass fluxes, momentum, derivatives,
-  //! advection) as one kernel (for_each_cell_fused()); false launches them one by one. The bytes are the same
-  //! either way (tests/cip/test_fused_step.cpp); false is for that test and for benchmarks.
-  bool fuse_kernels = true;
+  //! How a step launches its groups of independent kernels (face velocities, mass fluxes, momentum, derivative
+  //! update, advection): as one kernel a group (for_each_cell_fused()) or one by one. The bytes are the same
+  //! either way (tests/cip/test_fused_step.cpp, G12); only the speed differs.
+  KernelFusion fusion = KernelFusion::backend_default;
 };
 
 //! Primitive state at a point, used to initialise the grid.
