@@ -268,11 +268,8 @@ void RockSolver::advance(double dt, int substeps) {
       for_each_index("fdem.probes", probes_,
                      ProbePeakKernel{device_ptr(a_->probe_station), device_ptr(a_->nodes.vx), device_ptr(a_->nodes.vy),
                                      device_ptr(a_->probe_peak), time_});
-    // Largest speed (flagged if any is not finite): drives the contact rebuild and catches instability.
-    for_each_index("fdem.speed_peak", node_count(),
-                   SpeedPeakKernel{device_ptr(a_->nodes.vx), device_ptr(a_->nodes.vy), device_ptr(a_->speed_peak)});
   }
-  pending_time_ = dt * substeps;
+  pending_time_ = dt * substeps;  // update_nodes() kept each node's largest speed (flagged if not finite)
 }
 
 void RockSolver::finish_motion(double v_max) {
@@ -341,7 +338,7 @@ void RockSolver::update_nodes(double dt) {
   for_each_index("fdem.nodes", node_count(),
                  NodeUpdateKernel{a.node_params.view(), a.node_loads.view(), a.forces.read(),
                                   device_ptr(a.edges.joint_force), a.nodes.view(), a.ledger.view(),
-                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_});
+                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed_peak)});
   dt_prev_ = dt;
 }
 

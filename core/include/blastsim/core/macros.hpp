@@ -26,21 +26,15 @@ using index_t = std::int64_t;
 BLAST_HD inline double min_of(double a, double b) { return a < b ? a : b; }
 BLAST_HD inline double max_of(double a, double b) { return a < b ? b : a; }
 
-//! Name of the backend this build's kernels run on, for logs and benchmark reports. Correct in host-only
-//! translation units too (the build defines BLASTSIM_BACKEND_CUDA for a CUDA build).
-//! True where the kernels run on a GPU (the CUDA backend).
+//! True where the kernels run on a GPU (the CUDA backend). Correct in host-only translation units too (the
+//! build defines BLASTSIM_BACKEND_CUDA for a CUDA build).
 #if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
 constexpr bool kBackendIsGpu = true;
 #else
 constexpr bool kBackendIsGpu = false;
 #endif
 
-inline const char* backend_name() {
-#if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
-  return "cuda";
-#else
-  return "cpu-openmp";
-#endif
-}
+//! Name of the backend this build's kernels run on, for logs and benchmark reports.
+inline const char* backend_name() { return kBackendIsGpu ? "cuda" : "cpu-openmp"; }
 
 }  // namespace blastsim

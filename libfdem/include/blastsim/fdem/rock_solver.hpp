@@ -9,10 +9,10 @@
 //! The arrays live behind the class (rock_fields.hpp lists them), so this header needs no backend headers.
 #pragma once
 
-#include "blastsim/fdem/rock_step_kernels.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
+#include "blastsim/fdem/rock_step_kernels.hpp"
 #include "blastsim/fdem/rock_types.hpp"
 
 #include <array>
@@ -65,7 +65,7 @@ class RockSolver {
   void step(double dt);
   //! Advances by `substeps` steps of dt [s] without reading anything back (the host does not wait). The
   //! contact broad phase is rebuilt first where the nodes may travel half its buffer before the next read
-  //! (the travel so far plus, over the substeps after the first, the last speed read). Each substep keeps
+  //! (the travel so far plus, over the substeps after the first, the last speed read). Each node update keeps
   //! every node's largest speed; the caller then reduces peak_speed_kernel() over node_count() nodes (alone,
   //! or fused with its own reduction) and passes the maximum to finish_motion() before the next advance().
   void advance(double dt, int substeps);

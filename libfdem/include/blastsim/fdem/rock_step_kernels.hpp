@@ -402,36 +402,26 @@ BLAST_HD inline Vec2 viscous_boundary_velocity(double m, double dt, const Mat2& 
   return {m * (inv.a * v_free.x + inv.b * v_free.y), m * (inv.c * v_free.x + inv.d * v_free.y)};
 }
 
-
 //! A node's speed [m/s], or 1e308 where it is not finite (so a maximum over nodes flags instability).
 BLAST_HD inline double node_speed_or_flag(double vx, double vy) {
   const double s = vx * vx + vy * vy;
   return s == s && s < 1e300 ? sqrt(s) : 1e308;
 }
 
-//! Keeps each node's largest speed over the substeps since the last read (RockSolver::advance()): one
-//! thread a node, so the host reads one maximum after several substeps instead of one after each.
-struct SpeedPeakKernel {
-  const double* vx;
-  const double* vy;
-  double* peak;
-  BLAST_HD void operator()(index_t n) const {
-    const double s = node_speed_or_flag(vx[n], vy[n]);
-    peak[n] = s > peak[n] ? s : peak[n];
-  }
-};
-
-//! Node n's peak speed, for a maximum over the nodes (RockSolver::peak_speed_kernel()).
+//! Node n's largest speed since the last read (kept by NodeUpdateKernel), for a maximum over the nodes
+//! (RockSolver::peak_speed_kernel()).
 struct NodeSpeedPeak {
   const double* peak;
   BLAST_HD double operator()(index_t n) const { return peak[n]; }
 };
+
 //! Node update (symplectic Euler, docs/fdem-solver.md): gathers the node's forces (its triangle, the joints
 //! on its two edges, contact, pressure on its triangle's exposed edges, gravity), takes its viscous-boundary
 //! dashpots implicitly, applies prescribed velocities, moves the node, and accumulates the work of each kind of
 //! force by the trapezoid rule: the force at x_n works over half of the previous displacement and half of the
 //! next one, so linear springs' work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m
-//! every step).
+//! every step). It also keeps the node's largest speed since the last read (`speed_peak`, node_speed_or_flag()),
+//! so the host reads one maximum after several substeps instead of one after each (RockSolver::advance()).
 struct NodeUpdateKernel {
   NodeParams params;  //!< mass
   NodeLoads loads;
@@ -440,6 +430,7 @@ struct NodeUpdateKernel {
   NodeMotion<Access::read_write> nodes;
   NodeLedger<Access::read_write> ledger;
   double gx, gy, dt, dt_prev;
+  double* speed_peak;  //!< per node [m/s]
   BLAST_HD void operator()(index_t ni) const {
     const int n = static_cast<int>(ni);
     const SlotForce& starting = joint_force[n];                // the slot that starts at n (n is its first node)
@@ -470,6 +461,8 @@ struct NodeUpdateKernel {
     ledger.support[n] = support;
     nodes.vx[n] = v.x;
     nodes.vy[n] = v.y;
+    const double speed = node_speed_or_flag(v.x, v.y);
+    if (speed > speed_peak[n]) speed_peak[n] = speed;
     nodes.x[n] += v.x * dt;
     nodes.y[n] += v.y * dt;
     NodeWork& w = ledger.work[n];
