@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   int steps = 20, warmup = 40;
   bool per_kernel = false;
   cip::KernelFusion fusion = cip::KernelFusion::backend_default;
+  ibm::GasLoad load = ibm::GasLoad::edge_pressures;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--cases=", 0) == 0) {  // N:H,N:H,...
@@ -56,19 +57,23 @@ int main(int argc, char** argv) {
       fusion = cip::KernelFusion::fused;
     } else if (arg == "--separate") {
       fusion = cip::KernelFusion::separate;
+    } else if (arg == "--gas-load=faces" || arg == "--gas-load=edges") {
+      load = arg == "--gas-load=faces" ? ibm::GasLoad::face_forces : ibm::GasLoad::edge_pressures;
     } else {
       std::fprintf(stderr, "usage: %s [--cases=N:H,...] [--steps=N] [--warmup=N] [--kernels] [--fused | --separate]\n"
+                           "       [--gas-load=edges|faces]\n"
                            "  N: gas cells per side of the 2.24 m grid; H: triangle size [m] (paper: 5001:0.0095)\n"
                            "  --kernels: also every kernel's time and launches per step\n"
                            "  --fused, --separate: the gas step's kernel groups as one launch each, or one by one\n"
-                           "    (default: fused on a GPU, separate on host threads)\n",
+                           "    (default: fused on a GPU, separate on host threads)\n"
+                           "  --gas-load: the gas's load on the rock, edge pressures (default) or face forces\n",
                    argv[0]);
       return 2;
     }
   }
   const double bw = bench::copy_bandwidth();
-  std::printf("backend %s, threads %d, %d timed steps after %d warm-up steps; copy bandwidth (read + write) %.1f GB/s\n",
-              backend_name(), bench::thread_count(), steps, warmup, bw / 1e9);
+  std::printf("backend %s, threads %d, %d timed steps after %d warm-up steps; gas load %s; copy bandwidth (read + "
+              "write) %.1f GB/s\n", backend_name(), bench::thread_count(), steps, warmup, ibm::gas_load_name(load), bw / 1e9);
   for (const auto& [n, h] : cases) {
     const double w = 1.12;
     const cip::GasPoint air{1.20, 2.09e5, 0, 0}, hole_gas{163.0, 4.29e5, 0, 0};
@@ -80,6 +85,7 @@ int main(int argc, char** argv) {
     const fdem::FdemTopology topo = fdem::build_topology(fdem::ring_disc_with_hole(0, 0, 0.93, 0.05, h).mesh);
     fdem::RockSolver rock(topo, fdem::RockMaterial::paper_table2(), fdem::RockOptions{});
     ibm::GasRockCoupler coupler(gas, rock, air);
+    coupler.set_gas_load(load);
     coupler.rock_to_gas();
     // After the first step the coupler has the signal rate (read with the rock's speed, one wait a step).
     auto one_step = [&] {
@@ -122,6 +128,8 @@ int main(int argc, char** argv) {
         {"coupling masks", {"ibm.cover", "ibm.cells", "ibm.clear_owner"}, 0, cells * (2 * 4 + 1) + tri * 6 * 8},
         {"coupling velocities", {"ibm.face_velocity"}, 0, cells * 2 * (8 + 1 + 4)},
         {"coupling pressures", {"ibm.edge_pressure"}, 0, 3 * tri * (8 + 8 + 1)},
+        // face forces: per triangle its node loads, and the owners, pressures and masks of the faces it covers
+        {"coupling face forces", {"ibm.face_load"}, 0, load == ibm::GasLoad::face_forces ? 3 * tri * 16 + cells * 2 * (4 + 8 + 1) : 0},
     };
     double other = 0, total = 0;
     for (const auto& [label, e] : prof.entries()) {

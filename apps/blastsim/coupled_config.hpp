@@ -5,6 +5,7 @@
 #include "blastsim/cip/gas_types.hpp"
 #include "blastsim/ibm/blasthole_monitor.hpp"
 #include "blastsim/ibm/charges.hpp"
+#include "blastsim/ibm/coupler.hpp"
 #include "blastsim/ibm/crack_gas.hpp"
 #include "case_config.hpp"
 #include "rock_config.hpp"
@@ -29,6 +30,9 @@ struct CoupledCaseConfig {
   //! time.rock_subcycling: the gas steps at its own Courant limit and the rock takes as many steps of at most
   //! its stable step as fill each gas step (false: one dt for both, the paper's scheme).
   bool rock_subcycling = false;
+  //! coupling.gas_load: how the grid gas loads the rock (docs/coupling.md "Gas -> rock"): "edges" (the
+  //! default, the paper's edge pressures) or "faces" (the work the gas did on its immersed faces, exactly)
+  ibm::GasLoad gas_load = ibm::GasLoad::edge_pressures;
   //! [monitor.blasthole]: the blasthole monitor (wall_series.csv, summary.txt), when given.
   struct Blasthole {
     ibm::BlastholeGeometry geometry;

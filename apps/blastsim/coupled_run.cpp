@@ -441,6 +441,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   cip::GasSolver gas(gc.grid, gc.materials(), gc.solver);
   gas.initialise([&](double x, double y) { return gc.initial_state(x, y); });
   ibm::GasRockCoupler coupler(gas, rock, gc.ambient);
+  coupler.set_gas_load(c.gas_load);
   if (c.crack_gas) coupler.enable_crack_gas(c.crack_gas_options);
   if (!c.charges.empty()) {
     coupler.set_charges(c.charges, c.charge_products);
@@ -453,9 +454,9 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   const bool resume = options.restart;
   if (!resume) coupler.rock_to_gas();  // masks first: cells under rock take the ambient state before any output
   log << fmt::format("coupled: gas {} x {} cells of {:.4g} x {:.4g} m ({} covered by rock); rock {} triangles, {} joints, "
-                     "stable step {:.4g} s; {}\n",
+                     "stable step {:.4g} s; gas load on the rock: {}; {}\n",
                      gc.grid.nx, gc.grid.ny, gc.grid.dx, gc.grid.dy, coupler.inactive_cells(), rock.triangle_count(),
-                     rock.joint_count(), rock.stable_dt(),
+                     rock.joint_count(), rock.stable_dt(), ibm::gas_load_name(c.gas_load),
                      c.crack_gas ? fmt::format("crack gas on (residual aperture {:.3g} m, friction factor {:.3g}, {} junctions)",
                                                c.crack_gas_options.residual_aperture, c.crack_gas_options.friction_factor,
                                                coupler.crack_gas()->junctions())

@@ -375,6 +375,10 @@ CoupledCaseConfig read_coupled_case(const toml::table& input) {
     c.regions.push_back(m);
   }
   monitor.finish();
+  TableReader coupling = root.table("coupling");
+  c.gas_load = coupling.text("gas_load", {"edges", "faces"}, std::string("edges")) == "faces" ? ibm::GasLoad::face_forces
+                                                                                              : ibm::GasLoad::edge_pressures;
+  coupling.finish();
   TableReader crack = root.table("crack_gas");
   c.crack_gas = crack.boolean("enabled", false);
   ibm::CrackGasOptions& o = c.crack_gas_options;

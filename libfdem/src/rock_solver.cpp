@@ -128,6 +128,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.edges.joint_force.assign(3 * triangles_, SlotForce{{0.0, 0.0}, {0.0, 0.0}});
   copy_from_host(a.edges.exposed, exposed);
   a.edges.pressure.assign(3 * triangles_, 0.0);
+  a.edges.node_load.assign(3 * triangles_, Vec2{0.0, 0.0});
   copy_from_host(a.joint_params.nodes, joint_nodes_host_), copy_from_host(a.joint_params.strength, strength);
   copy_from_host(a.joint_params.length, joint_length);
   a.joints.damage.assign(joints_, JointPointDamage{{0, 0, 0}});
@@ -503,12 +504,13 @@ std::vector<ProbeSample> RockSolver::probe_samples() const {
 RockView RockSolver::view() {
   detail::RockArrays& a = *a_;
   return {device_ptr(a.nodes.x),      device_ptr(a.nodes.y),        device_ptr(a.nodes.vx), device_ptr(a.nodes.vy),
-          device_ptr(a.edges.exposed), device_ptr(a.edges.pressure), triangles_,
+          device_ptr(a.edges.exposed), device_ptr(a.edges.pressure), device_ptr(a.edges.node_load), triangles_,
           device_ptr(a.edge_params.joint), device_ptr(a.joint_params.nodes), device_ptr(a.joints.broken), joints_};
 }
 
 std::vector<double> RockSolver::edge_pressures() const { return to_host(a_->edges.pressure); }
 std::vector<std::uint8_t> RockSolver::edge_exposure() const { return to_host(a_->edges.exposed); }
+std::vector<Vec2> RockSolver::node_loads() const { return to_host(a_->edges.node_load); }
 
 RockEnergies RockSolver::energies() const {
   const detail::RockArrays& a = *a_;

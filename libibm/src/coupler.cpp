@@ -72,6 +72,8 @@ GasRockCoupler::GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, cons
 
 GasRockCoupler::~GasRockCoupler() = default;
 
+const char* gas_load_name(GasLoad load) { return load == GasLoad::face_forces ? "faces" : "edges"; }
+
 void GasRockCoupler::rock_to_gas() {
   const cip::GasGrid g = gas_.grid();
   const PaddedShape sh = g.padded_shape();
@@ -87,8 +89,9 @@ void GasRockCoupler::rock_to_gas() {
     for_each_cell("ibm.charge.cover.v", 0, g.nx, 0, g.ny + 1, ChargeCoverKernel{charge_cells, 1, t, vo});
   }
   const cip::ImmersedBoundaryView ib = gas_.immersed_boundary();
-  for_each_cell("ibm.face_velocity.u", 0, g.nx + 1, 0, g.ny, ImposedVelocityKernel{rock, g, 0, uo, ib.u_prescribed, ib.u_imposed});
-  for_each_cell("ibm.face_velocity.v", 0, g.nx, 0, g.ny + 1, ImposedVelocityKernel{rock, g, 1, vo, ib.v_prescribed, ib.v_imposed});
+  const bool faces = gas_load_ == GasLoad::face_forces;
+  for_each_cell("ibm.face_velocity.u", 0, g.nx + 1, 0, g.ny, ImposedVelocityKernel{rock, g, 0, uo, ib.u_prescribed, ib.u_imposed, faces});
+  for_each_cell("ibm.face_velocity.v", 0, g.nx, 0, g.ny + 1, ImposedVelocityKernel{rock, g, 1, vo, ib.v_prescribed, ib.v_imposed, faces});
   const Field2D<std::uint8_t> fresh = make_field_view(a_->new_active, sh), changed = make_field_view(a_->changed, sh);
   const Field2D<double> rho_next = make_field_view(a_->rho_next, sh), e_next = make_field_view(a_->e_next, sh);
   for_each_cell("ibm.cells.mask", 0, g.nx, 0, g.ny, NewMaskKernel{uo, vo, fresh});
@@ -125,7 +128,14 @@ void GasRockCoupler::gas_to_rock() {
                  EdgePressureKernel{rock, g, mat, gas_.material_fields(), ib.cell_active, s.rho.f, s.e.f,
                                     mat_ambient_pressure(),
                                     crack_ ? crack_->network().kind : nullptr, crack_ ? crack_->network().prim : nullptr,
-                                    crack_ ? device_ptr(a_->load_factor) : nullptr});
+                                    crack_ ? device_ptr(a_->load_factor) : nullptr, gas_load_ == GasLoad::face_forces});
+  if (gas_load_ == GasLoad::face_forces) {
+    const PaddedShape sh = g.padded_shape();
+    for_each_index("ibm.face_load", static_cast<index_t>(rock.triangles),
+                   FaceLoadKernel{rock, g, mat, gas_.material_fields(), ib.cell_active, s.rho.f, s.e.f,
+                                  make_field_view(a_->u_owner, sh), make_field_view(a_->v_owner, sh),
+                                  Field2D<const double>{gas_.pressure_with_viscosity().data, sh}, gas_.steps() > 0});
+  }
 }
 
 void GasRockCoupler::enable_crack_gas(const CrackGasOptions& options) {
@@ -384,6 +394,7 @@ double GasRockCoupler::mat_ambient_pressure() const {
 
 void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {
   w.value("ibm.masks_set", static_cast<int>(masks_set_));
+  w.value("ibm.gas_load", static_cast<int>(gas_load_));
   w.array("ibm.ledger", a_->ledger);
   if (crack_) crack_->write_checkpoint(w);
   if (!charges_.empty()) {
@@ -396,6 +407,9 @@ void GasRockCoupler::read_checkpoint(CheckpointReader& r) {
   const int masks = r.value<int>("ibm.masks_set");
   if (masks != 0 && masks != 1) r.fail("ibm.masks_set", "not 0 or 1");
   masks_set_ = masks == 1;
+  const int load = r.value<int>("ibm.gas_load");
+  if (load != static_cast<int>(gas_load_))
+    r.fail("ibm.gas_load", std::string("the checkpoint's gas load is not this run's (") + gas_load_name(gas_load_) + ")");
   r.array("ibm.ledger", a_->ledger, a_->ledger.size());
   if (crack_) crack_->read_checkpoint(r);
   if (!charges_.empty()) {

@@ -1,9 +1,11 @@
 //! \file test_coupling_kernels.cpp
 //! \brief The coupling kernels (coupling_step_kernels.hpp) called directly on a few cells of host arrays: the
-//! gas moved between cells that change state, and the pressure an exposed edge takes.
+//! gas moved between cells that change state, and the work a crack's gas does on its walls.
 #include "blastsim/ibm/coupling_step_kernels.hpp"
 #include "catch.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <vector>
 
 using namespace blastsim;
@@ -84,4 +86,24 @@ TEST_CASE("Coupling kernels: an uncovered cell starts from the ambient state and
   CHECK_THAT(p.ledger[4 * c + 3], Catch::Matchers::WithinRel(rho_amb * e_amb * area, 1e-15));
   // Its neighbours keep their gas: the gas flows in through the solver, not by the transition.
   CHECK(p.rho_next[p.shape.offset(2, 1)] == p.rho[p.shape.offset(2, 1)]);
+}
+
+TEST_CASE("Coupling kernels: a crack's gas does p dV on its walls, and never more than keeps it positive",
+          "[ibm][kernels][crack]") {
+  // An ideal gas (gamma 1.4) at rest in a segment: 1e-3 kg/m at 2e5 J/kg in V0 = 1e-5 m2/m, so U = 200 J/m and
+  // p = 0.4 rho e = 8e6 Pa. A small opening (1 %): the explicit work p dV exactly. An opening to 10 times the
+  // volume, where p dV = 7.2e2 J/m would exceed U: the isentropic expansion's work U (1 - (V0 / V1)^(gamma - 1)),
+  // exact for an ideal gas, with U after it U (V0 / V1)^0.4 > 0. Compression is not limited.
+  const ibm::ChannelConserved c{1e-3, 0.0, 200.0, 0.0, 0.0};
+  const double V0 = 1e-5, p = 0.4 * (1e-3 / V0) * 2e5;
+  CHECK_THAT(ibm::expansion_work(c, p, V0, 1.01 * V0), Catch::Matchers::WithinRel(p * 0.01 * V0, 1e-14));
+  CHECK_THAT(ibm::expansion_work(c, p, V0, 0.5 * V0), Catch::Matchers::WithinRel(-p * 0.5 * V0, 1e-14));
+  const double W = ibm::expansion_work(c, p, V0, 10 * V0);
+  std::printf("crack expansion: p dV %.4e J/m, work taken %.6e J/m (isentropic %.6e J/m), internal energy left %.4e J/m\n",
+              p * 9 * V0, W, 200.0 * (1 - std::pow(0.1, 0.4)), 200.0 - W);
+  CHECK_THAT(W, Catch::Matchers::WithinRel(200.0 * (1 - std::pow(0.1, 0.4)), 1e-12));
+  CHECK(200.0 - W > 0.0);
+  // Moving gas: only its internal energy E - q^2 / 2m counts.
+  const ibm::ChannelConserved moving{1e-3, 1e-3 * 300.0, 200.0 + 0.5 * 1e-3 * 300.0 * 300.0, 0.0, 0.0};
+  CHECK_THAT(ibm::expansion_work(moving, p, V0, 10 * V0), Catch::Matchers::WithinRel(W, 1e-12));
 }

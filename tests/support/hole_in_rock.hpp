@@ -28,18 +28,20 @@ inline fdem::RockMaterial intact_rock() {
 
 //! A disc of rock (radius R, central hole a, triangles of size h) in air on an N x N grid over [-w, w]^2; the
 //! hole holds the Table 1 gas in every cell centred within 1.5 cells of the hole radius (cut cells included).
-//! `cracks`: segments put into the mesh (pre-cut cracks once their joints are broken).
+//! `cracks`: segments put into the mesh (pre-cut cracks once their joints are broken); `load`: how the gas loads
+//! the rock.
 struct HoleInRock {
   cip::GasSolver gas;
   fdem::RockSolver rock;
   ibm::GasRockCoupler coupler;
   HoleInRock(int N, double w, double R, double a, double h, const fdem::RockMaterial& m,
-             const std::vector<fdem::Segment>& cracks = {})
+             const std::vector<fdem::Segment>& cracks = {}, ibm::GasLoad load = ibm::GasLoad::edge_pressures)
       : gas(cip::GasGrid::from_box(N, N, -w, w, -w, w), cip::EquationOfState::ideal(1.4)),
         rock(fdem::build_topology(fdem::gmsh_disc_with_hole(0, 0, R, a, h, cracks).mesh), m, no_contact()),
         coupler(gas, rock, table1_air) {
     const double r_fill = a + 1.5 * 2 * w / N;
     gas.initialise([&](double x, double y) { return x * x + y * y < r_fill * r_fill ? table1_gas : table1_air; });
+    coupler.set_gas_load(load);
     coupler.rock_to_gas();
   }
   static fdem::RockOptions no_contact() {

@@ -119,7 +119,8 @@ struct PairLoad {
 #define BLASTSIM_ROCK_EDGE_STATE(X)                                                        \
   X(SlotForce, joint_force, "force of the joint across the slot on the slot's two nodes") \
   X(std::uint8_t, exposed, "kEdgeInside, kEdgeBoundary or kEdgeCrackFace")                \
-  X(double, pressure, "pressure on the edge when exposed [Pa] (written by a coupler)")
+  X(double, pressure, "pressure on the edge when exposed [Pa] (written by a coupler)")                      \
+  X(Vec2, node_load, "load on the slot's first node (node 3 t + k) written by a coupler [N/m]")
 #define BLASTSIM_ROCK_JOINT_STATE(X)                                       \
   X(JointPointDamage, damage, "irreversible damage at the three points")   \
   X(JointPointValues, separation, "opening and slip at the three points [m]") \

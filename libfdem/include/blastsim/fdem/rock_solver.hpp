@@ -40,6 +40,7 @@ struct RockView {
   const double* vy;
   const std::uint8_t* edge_exposed;  //!< per edge slot: kEdgeInside, kEdgeBoundary or kEdgeCrackFace
   double* edge_pressure;             //!< per edge slot [Pa], read by the next step
+  Vec2* node_load;                   //!< per node [N/m], read by the next step (a coupler's face forces)
   int triangles;
   const int* edge_joint;             //!< per edge slot: the joint across it, or -1
   const JointNodes* joint_nodes;     //!< per joint: its four nodes
@@ -107,6 +108,8 @@ class RockSolver {
   //! Host copies of the edge pressures [Pa] and exposure flags, one per edge slot (for tests and output).
   std::vector<double> edge_pressures() const;
   std::vector<std::uint8_t> edge_exposure() const;
+  //! Host copy of the coupler's node loads [N/m] (RockView::node_load), one per node.
+  std::vector<Vec2> node_loads() const;
 
   // --- checkpoint and restart ---
   //! Appends every array and counter of the solver to a checkpoint; read_checkpoint() restores them into a

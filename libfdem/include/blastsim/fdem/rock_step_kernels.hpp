@@ -125,8 +125,9 @@ struct TriangleForceKernel {
       fp[e1] = {fp[e1].x + half.x, fp[e1].y + half.y};
     }
     for (int k = 0; k < 3; ++k) {
-      forces.pressure_x[3 * t + k] = fp[k].x;
-      forces.pressure_y[3 * t + k] = fp[k].y;
+      const Vec2 load = edges.node_load[3 * t + k];
+      forces.pressure_x[3 * t + k] = fp[k].x + load.x;
+      forces.pressure_y[3 * t + k] = fp[k].y + load.y;
     }
     if (eta > 0) {  // dissipation rate A eta D:D
       const Mat2 L = LX * FX.inverse();

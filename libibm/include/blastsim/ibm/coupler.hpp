@@ -61,6 +61,19 @@ inline CoupledStep plan_coupled_step(double t, double gas_dt, double rock_dt, bo
   return {dt, subcycling ? rock_substeps(dt, rock_dt) : 1};
 }
 
+//! How the grid gas loads the rock (docs/coupling.md "Gas -> rock"). Crack faces with their own gas (crack gas)
+//! take that gas's pressure either way.
+enum class GasLoad {
+  //! The paper's rule: every exposed edge takes the pressure of the active cell it faces (or the nearest one).
+  edge_pressures,
+  //! The force the gas's momentum equation applied at each prescribed face, put on the rock surface it stands
+  //! for, along the surface normal, with the weights that gave the face its imposed (normal) velocity: the
+  //! rock receives exactly the work the gas did on its immersed faces.
+  face_forces,
+};
+//! "edges" or "faces" (the driver's `coupling.gas_load`).
+const char* gas_load_name(GasLoad load);
+
 namespace detail {
 struct CouplerArrays;
 }
@@ -80,10 +93,18 @@ class GasRockCoupler {
   //! uncovered cell starts from the ambient state (counted in the transition ledger).
   void rock_to_gas();
 
-  //! Pressure [Pa] on every exposed edge: that of the active cell the edge faces; where that cell is inactive,
-  //! a boundary edge takes the nearest active cell within 2 cells (the paper's rule) and a crack face the
-  //! ambient pressure (a crack narrower than the grid holds no gas).
+  //! The grid gas's load on the rock. GasLoad::edge_pressures: pressure [Pa] on every exposed edge, that of
+  //! the active cell the edge faces; where that cell is inactive, a boundary edge takes the nearest active cell
+  //! within 2 cells (the paper's rule) and a crack face the ambient pressure (a crack narrower than the grid
+  //! holds no gas). GasLoad::face_forces: forces [N/m] on the nodes from the prescribed faces (FaceLoadKernel),
+  //! edge pressures 0. Crack faces with their own gas take its pressure in both.
   void gas_to_rock();
+
+  //! Chooses how the grid gas loads the rock (default: GasLoad::edge_pressures, the paper's rule); it also
+  //! chooses how the face points take the rock's velocity (face_point_coupling()). Call before the first
+  //! step; a checkpoint records it and read_checkpoint() refuses another choice.
+  void set_gas_load(GasLoad load) { gas_load_ = load; }
+  GasLoad gas_load() const { return gas_load_; }
 
   //! One coupled step of dt [s]: rock_to_gas(), gas step, gas_to_rock(), then `rock_substeps` rock steps of
   //! dt / rock_substeps under those edge pressures (1: the paper's single dt; more: the rock subcycles a gas
@@ -152,6 +173,7 @@ class GasRockCoupler {
   fdem::RockSolver& rock_;
   cip::GasPoint ambient_;
   bool masks_set_ = false;
+  GasLoad gas_load_ = GasLoad::edge_pressures;
   std::unique_ptr<CrackGas> crack_;
   std::vector<Charge> charges_;
   ChargeProducts products_;

@@ -33,6 +33,24 @@ struct Vec2Sum {
   BLAST_HD Vec2Sum operator+(const Vec2Sum& o) const { return {x + o.x, y + o.y}; }
 };
 
+//! The face points of one kind (face 0: x-faces at (x_min + i dx, y_min + (j + 1/2) dy); 1: y-faces at
+//! (x_min + (i + 1/2) dx, y_min + j dy)) inside the bounding box of the triangle with nodes (x, y): indices
+//! i0..i1, j0..j1 (empty when i0 > i1 or j0 > j1) and the points' offsets in cells.
+struct FaceBox {
+  int i0, i1, j0, j1;
+  double ox, oy;
+};
+BLAST_HD inline FaceBox triangle_face_box(const cip::GasGrid& g, const double* x, const double* y, int face) {
+  const double x0 = min_of(x[0], min_of(x[1], x[2])), x1 = max_of(x[0], max_of(x[1], x[2]));
+  const double y0 = min_of(y[0], min_of(y[1], y[2])), y1 = max_of(y[0], max_of(y[1], y[2]));
+  const double ox = face == 0 ? 0.0 : 0.5, oy = face == 0 ? 0.5 : 0.0;
+  const int ni = face == 0 ? g.nx + 1 : g.nx, nj = face == 0 ? g.ny : g.ny + 1;
+  return {imax(0, static_cast<int>(ceil((x0 - g.x_min) / g.dx - ox))),
+          imin(ni - 1, static_cast<int>(floor((x1 - g.x_min) / g.dx - ox))),
+          imax(0, static_cast<int>(ceil((y0 - g.y_min) / g.dy - oy))),
+          imin(nj - 1, static_cast<int>(floor((y1 - g.y_min) / g.dy - oy))), ox, oy};
+}
+
 //! Marks the x-face (u) and y-face (v) points inside each triangle (docs/coupling.md "Rock -> gas": bounding-box
 //! rasterisation), keeping the highest triangle index per point.
 struct CoverKernel {
@@ -43,27 +61,72 @@ struct CoverKernel {
     const int t = static_cast<int>(ti);
     double x[3], y[3];
     for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
-    const double x0 = min_of(x[0], min_of(x[1], x[2])), x1 = max_of(x[0], max_of(x[1], x[2]));
-    const double y0 = min_of(y[0], min_of(y[1], y[2])), y1 = max_of(y[0], max_of(y[1], y[2]));
     for (int face = 0; face < 2; ++face) {
-      // x-faces sit at (x_min + i dx, y_min + (j + 1/2) dy), y-faces at (x_min + (i + 1/2) dx, y_min + j dy).
-      const double ox = face == 0 ? 0.0 : 0.5, oy = face == 0 ? 0.5 : 0.0;
-      const int ni = face == 0 ? g.nx + 1 : g.nx, nj = face == 0 ? g.ny : g.ny + 1;
-      const int i0 = imax(0, static_cast<int>(ceil((x0 - g.x_min) / g.dx - ox)));
-      const int i1 = imin(ni - 1, static_cast<int>(floor((x1 - g.x_min) / g.dx - ox)));
-      const int j0 = imax(0, static_cast<int>(ceil((y0 - g.y_min) / g.dy - oy)));
-      const int j1 = imin(nj - 1, static_cast<int>(floor((y1 - g.y_min) / g.dy - oy)));
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) {
+      const FaceBox b = triangle_face_box(g, x, y, face);
+      for (int j = b.j0; j <= b.j1; ++j)
+        for (int i = b.i0; i <= b.i1; ++i) {
           double w[3];
-          if (barycentric(x, y, g.x_min + (i + ox) * g.dx, g.y_min + (j + oy) * g.dy, w) && inside(w))
+          if (barycentric(x, y, g.x_min + (i + b.ox) * g.dx, g.y_min + (j + b.oy) * g.dy, w) && inside(w))
             atomic_max(&(face == 0 ? u_owner : v_owner)(i, j), t);
         }
     }
   }
 };
 
-//! Imposed velocity of each face point from its covering triangle's nodes (linear shape functions); zero on the
+//! How a rock triangle meets the gas at one face point: the weights of its three nodes and, with the face-force
+//! load (GasLoad::face_forces), the unit normal of the rock surface the point stands for.
+struct FacePointCoupling {
+  double w[3];
+  double nx, ny;  // (0, 0): the point takes the whole velocity component (edge pressures; no exposed edge)
+};
+
+//! The face point (px, py) of an x-face (axis 0) or y-face (axis 1) covered by triangle t with nodes (x, y).
+//! Edge pressures (the paper's rule, `surface` false): the linear shape functions at the point. Face forces
+//! (`surface` true): the point stands for the rock surface between it and the cell beside it, so it moves onto
+//! an exposed edge of t - the one the line through the point along the grid axis crosses nearest to it, or else
+//! the exposed edge nearest to it - with that edge's linear weights there, and only the surface's normal motion
+//! counts (a slip wall); a triangle with no exposed edge keeps its shape functions and the whole velocity
+//! component (docs/coupling.md "Face forces").
+BLAST_HD inline FacePointCoupling face_point_coupling(const fdem::RockView& rock, int t, const double* x, const double* y,
+                                                      double px, double py, int axis, bool surface) {
+  FacePointCoupling c{{1.0 / 3, 1.0 / 3, 1.0 / 3}, 0.0, 0.0};
+  int edge = -1;
+  double at = 0.0, edge_x = 0.0, edge_y = 0.0;  // position along the chosen edge (0 at its first node), its vector
+  if (surface) {
+    double along = 1e300, near = 1e300;  // the nearest crossing along the axis; the nearest edge
+    int crossed = -1, nearest = -1;
+    double s_crossed = 0.0, s_nearest = 0.0, cx = 0.0, cy = 0.0, nx = 0.0, ny = 0.0;
+    for (int k = 0; k < 3; ++k) {  // unrolled: every index below is known at compile time
+      if (rock.edge_exposed[3 * t + k] == fdem::kEdgeInside) continue;
+      const int k1 = (k + 1) % 3;
+      const double ex = x[k1] - x[k], ey = y[k1] - y[k];
+      const double e_along = axis == 0 ? ex : ey, e_across = axis == 0 ? ey : ex;
+      const double p_along = axis == 0 ? px - x[k] : py - y[k], p_across = axis == 0 ? py - y[k] : px - x[k];
+      if (e_across != 0.0) {
+        const double sc = p_across / e_across;  // the edge's point level with the face point across the axis
+        const double d = fabs(sc * e_along - p_along);
+        if (sc >= 0.0 && sc <= 1.0 && d < along) along = d, crossed = k, s_crossed = sc, cx = ex, cy = ey;
+      }
+      double sn = ((px - x[k]) * ex + (py - y[k]) * ey) / (ex * ex + ey * ey);
+      sn = sn < 0.0 ? 0.0 : (sn > 1.0 ? 1.0 : sn);
+      const double dx = px - (x[k] + sn * ex), dy = py - (y[k] + sn * ey), d2 = dx * dx + dy * dy;
+      if (d2 < near) near = d2, nearest = k, s_nearest = sn, nx = ex, ny = ey;
+    }
+    edge = crossed >= 0 ? crossed : nearest;
+    at = crossed >= 0 ? s_crossed : s_nearest;
+    edge_x = crossed >= 0 ? cx : nx, edge_y = crossed >= 0 ? cy : ny;
+  }
+  if (edge < 0) {
+    barycentric(x, y, px, py, c.w);
+    return c;
+  }
+  for (int k = 0; k < 3; ++k) c.w[k] = k == edge ? 1.0 - at : (k == (edge + 1) % 3 ? at : 0.0);
+  const double l = sqrt(edge_x * edge_x + edge_y * edge_y);
+  c.nx = edge_y / l, c.ny = -edge_x / l;
+  return c;
+}
+
+//! Imposed velocity of each face point from its covering triangle's nodes (face_point_coupling()); zero on the
 //! wall of an unburnt charge.
 struct ImposedVelocityKernel {
   fdem::RockView rock;
@@ -72,18 +135,24 @@ struct ImposedVelocityKernel {
   Field2D<const int> owner;
   Field2D<std::uint8_t> prescribed;
   Field2D<double> imposed;
+  bool surface;  // face forces: surface points, normal motion (face_point_coupling())
   BLAST_HD void operator()(int i, int j) const {
     const int t = owner(i, j);
     prescribed(i, j) = t != kNoOwner;
     if (t == kChargeOwner) imposed(i, j) = 0.0;  // the wall of an unburnt charge, at rest
     if (t < 0) return;
-    double x[3], y[3], w[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    double x[3], y[3];
     for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
     const double px = g.x_min + (i + (face == 0 ? 0.0 : 0.5)) * g.dx;
     const double py = g.y_min + (j + (face == 0 ? 0.5 : 0.0)) * g.dy;
-    barycentric(x, y, px, py, w);
-    const double* vel = face == 0 ? rock.vx : rock.vy;
-    imposed(i, j) = w[0] * vel[3 * t] + w[1] * vel[3 * t + 1] + w[2] * vel[3 * t + 2];
+    const FacePointCoupling c = face_point_coupling(rock, t, x, y, px, py, face, surface);
+    double u = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double vx = rock.vx[3 * t + k], vy = rock.vy[3 * t + k];
+      if (c.nx == 0.0 && c.ny == 0.0) u += c.w[k] * (face == 0 ? vx : vy);
+      else u += c.w[k] * (face == 0 ? c.nx : c.ny) * (c.nx * vx + c.ny * vy);  // the normal motion's component
+    }
+    imposed(i, j) = u;
   }
 };
 
@@ -245,6 +314,7 @@ struct EdgePressureKernel {
   const std::uint8_t* crack_kind;        // per joint, or null without crack gas
   const ChannelPrimitive* crack_state;   // per joint
   const double* crack_load_factor;       // per joint: crack_width()'s dw_dopening
+  bool face_forces;  // GasLoad::face_forces: the grid gas loads the rock through FaceLoadKernel instead
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
     const std::uint8_t kind = rock.edge_exposed[s];
@@ -255,6 +325,10 @@ struct EdgePressureKernel {
         rock.edge_pressure[s] = crack_state[j].p * crack_load_factor[j];
         return;
       }
+    }
+    if (face_forces) {
+      rock.edge_pressure[s] = 0.0;
+      return;
     }
     const int a = fdem::slot_first_node(s), b = fdem::slot_second_node(s);
     const double mx = 0.5 * (rock.x[a] + rock.x[b]), my = 0.5 * (rock.y[a] + rock.y[b]);
@@ -276,16 +350,72 @@ struct EdgePressureKernel {
   }
 };
 
-//! Force of the edge pressures on the rock [N/m]: p L along the inward normal of every exposed edge.
+//! GasLoad::face_forces (docs/coupling.md "Face forces"): the force the grid gas puts on the rock is the one its
+//! own momentum equation applied at the prescribed faces. Per triangle t, every face point of its bounding box
+//! that t covers (owner == t) carries A (P_low - P_high) along its axis, P = p + q of the gas's last step in the
+//! active cells on either side (A the face's length), put on t's nodes with the weights and along the surface
+//! normal that gave the face its imposed velocity (face_point_coupling()). So the rock's power under these loads
+//! is the gas's power on the prescribed faces, term by term. Each triangle writes its own three node slots: no
+//! atomics. Before the gas's first step (`use_step_pressure` false) P is the cells' pressure p.
+struct FaceLoadKernel {
+  fdem::RockView rock;
+  cip::GasGrid g;
+  cip::GasMaterials mat;
+  cip::MaterialReadView materials;
+  Field2D<const std::uint8_t> active;
+  Field2D<const double> rho, e;
+  Field2D<const int> u_owner, v_owner;
+  Field2D<const double> P;  // p + q of the last step [Pa]
+  bool use_step_pressure;
+  BLAST_HD double pressure(int i, int j) const {
+    return use_step_pressure ? P(i, j) : cip::cell_pressure(mat, materials, rho(i, j), e(i, j), i, j);
+  }
+  BLAST_HD void operator()(index_t ti) const {
+    const int t = static_cast<int>(ti);
+    double x[3], y[3];
+    for (int k = 0; k < 3; ++k) x[k] = rock.x[3 * t + k], y[k] = rock.y[3 * t + k];
+    double fx[3] = {0.0, 0.0, 0.0}, fy[3] = {0.0, 0.0, 0.0};
+    for (int face = 0; face < 2; ++face) {
+      const FaceBox b = triangle_face_box(g, x, y, face);
+      const double ox = b.ox, oy = b.oy;
+      const Field2D<const int> owner = face == 0 ? u_owner : v_owner;  // by value: no run-time-chosen reference
+      for (int j = b.j0; j <= b.j1; ++j)
+        for (int i = b.i0; i <= b.i1; ++i) {
+          if (owner(i, j) != t) continue;
+          const int il = face == 0 ? i - 1 : i, jl = face == 0 ? j : j - 1;  // the low-side cell; (i, j) the high
+          double F = 0.0;  // [N/m] along +axis
+          if (il >= 0 && jl >= 0 && active(il, jl)) F += pressure(il, jl);
+          if (i < g.nx && j < g.ny && active(i, j)) F -= pressure(i, j);
+          if (F == 0.0) continue;
+          F *= face == 0 ? g.dy : g.dx;
+          const FacePointCoupling c =
+              face_point_coupling(rock, t, x, y, g.x_min + (i + ox) * g.dx, g.y_min + (j + oy) * g.dy, face, true);
+          if (c.nx != 0.0 || c.ny != 0.0) {  // along the surface normal
+            const double Fn = F * (face == 0 ? c.nx : c.ny);
+            for (int k = 0; k < 3; ++k) fx[k] += c.w[k] * Fn * c.nx, fy[k] += c.w[k] * Fn * c.ny;
+          } else if (face == 0) {  // no surface: along the axis
+            for (int k = 0; k < 3; ++k) fx[k] += c.w[k] * F;
+          } else {
+            for (int k = 0; k < 3; ++k) fy[k] += c.w[k] * F;
+          }
+        }
+    }
+    for (int k = 0; k < 3; ++k) rock.node_load[3 * t + k] = {fx[k], fy[k]};
+  }
+};
+
+//! Force of the gas on the rock [N/m] per slot: p L along the inward normal of an exposed edge, plus the face
+//! force on the slot's node (GasLoad::face_forces).
 struct EdgeForceOf {
   fdem::RockView rock;
   BLAST_HD Vec2Sum operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    if (!rock.edge_exposed[s]) return {0, 0};
+    const fdem::Vec2 load = rock.node_load[s];
+    if (!rock.edge_exposed[s]) return {load.x, load.y};
     const int a = fdem::slot_first_node(s), b = fdem::slot_second_node(s);
     const double p = rock.edge_pressure[s];  // along the inward normal
     const fdem::Vec2 n = fdem::edge_outward_normal({rock.x[a], rock.y[a]}, {rock.x[b], rock.y[b]});
-    return {-p * n.x, -p * n.y};
+    return {load.x - p * n.x, load.y - p * n.y};
   }
 };
 
@@ -303,6 +433,17 @@ BLAST_HD inline CrackWidth crack_width(double opening, double residual) {
   if (opening >= 0) return {residual + opening, 1.0};
   const double f = exp(opening / residual);
   return {residual * f, f};
+}
+
+//! Work [J/m] a segment's gas (conserved c, pressure p [Pa]) does on its walls when its volume goes from V0 to V1
+//! [m2 per m]: p (V1 - V0), unless that would take more than half of its internal energy U (a fast opening of a
+//! nearly empty crack), where the explicit product overshoots and would leave a negative internal energy; then
+//! the isentropic expansion at the gas's effective Gruneisen coefficient G = p V0 / U, U (1 - (V0 / V1)^G),
+//! which keeps U positive (exact for an ideal gas).
+BLAST_HD inline double expansion_work(const ChannelConserved& c, double p, double V0, double V1) {
+  const double W = p * (V1 - V0), U = c.E - 0.5 * c.q * c.q / c.m;
+  if (!(W > 0.5 * U) || !(U > 0.0)) return W;
+  return U * (1.0 - pow(V0 / V1, p * V0 / U));
 }
 
 //! Every joint's channel from the rock (one thread per joint = segment): length L (mean of its two faces),
@@ -357,7 +498,7 @@ struct CrackGeometryKernel {
     ChannelConserved c = n.cons[s];
     const double V_old = n.volume[s];
     const ChannelPrimitive P = segment_state(mat, c, V_old);
-    if (!is_vacuum(P)) c.E -= P.p * (V - V_old);
+    if (!is_vacuum(P)) c.E -= expansion_work(c, P.p, V_old, V);
     n.volume[s] = V;
     if (meets_grid) {
       handover[s] = c, handover_cell[s] = cj * g.nx + ci;
