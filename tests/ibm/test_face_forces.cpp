@@ -15,7 +15,7 @@ using namespace blastsim;
 namespace {
 const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);
 const cip::GasPoint air{1.20, 2.09e5, 0.0, 0.0};
-const double half = 0.053;  // the block's half side before rotation [m] (dx = 0.01 m)
+const double block_half = 0.053;  // half the block's side before rotation [m] (dx = 0.01 m)
 
 //! A 6 x 6 block of the paper's rock turned by `angle` [rad] about the origin, on a 40 x 40 grid over
 //! [-0.2, 0.2]^2, coupled with face forces.
@@ -24,7 +24,7 @@ struct TurnedBlock {
   fdem::RockSolver rock;
   ibm::GasRockCoupler coupler{gas, rock, air};
   static fdem::FdemTopology topology(double angle) {
-    fdem::TriangleMesh m = fdem::structured_rectangle(6, 6, -half, half, -half, half);
+    fdem::TriangleMesh m = fdem::structured_rectangle(6, 6, -block_half, block_half, -block_half, block_half);
     for (auto& v : m.vertices) {
       const double x = v[0], y = v[1];
       v = {std::cos(angle) * x - std::sin(angle) * y, std::sin(angle) * x + std::cos(angle) * y};
@@ -121,7 +121,7 @@ TEST_CASE("I8 face forces: uniform gas pushes a closed body inward along its nor
       // The block's own frame: a node on a side (not a corner) has one outward normal, +-e1 or +-e2 turned by a.
       const double xr = std::cos(a) * snap.x[n] + std::sin(a) * snap.y[n], yr = -std::sin(a) * snap.x[n] + std::cos(a) * snap.y[n];
       const double lx = std::cos(a) * load[n].x + std::sin(a) * load[n].y, ly = -std::sin(a) * load[n].x + std::cos(a) * load[n].y;
-      const bool side_x = std::fabs(std::fabs(xr) - half) < 1e-9, side_y = std::fabs(std::fabs(yr) - half) < 1e-9;
+      const bool side_x = std::fabs(std::fabs(xr) - block_half) < 1e-9, side_y = std::fabs(std::fabs(yr) - block_half) < 1e-9;
       if (side_x == side_y) continue;  // off the outline, or a corner
       const double normal = side_x ? lx * (xr > 0 ? 1 : -1) : ly * (yr > 0 ? 1 : -1);  // outward component
       const double tangential = side_x ? ly : lx;
@@ -129,7 +129,7 @@ TEST_CASE("I8 face forces: uniform gas pushes a closed body inward along its nor
       worst_tangential = std::fmax(worst_tangential, std::fabs(tangential));
       CHECK(normal <= 0.0);
     }
-    const double perimeter_force = p * 8 * half, face_force = p * 0.01;
+    const double perimeter_force = p * 8 * block_half, face_force = p * 0.01;
     std::printf("I8 uniform (%2.0f deg): inward load on the surface triangles' side nodes %.5e N/m (p x perimeter %.5e), "
                 "largest tangential %.1e N/m; largest load on a node of a triangle with no exposed edge %.3e N/m; net force "
                 "(%.3e, %.3e) N/m = %.2f face forces p dx\n", degrees, inward, perimeter_force, worst_tangential, off_surface, fx, fy, std::hypot(fx, fy) / face_force);
