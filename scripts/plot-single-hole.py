@@ -15,10 +15,12 @@ Writes into OUTPUT_DIR:
   energy_budget.png         the terms of the gas + rock energy budget and its residual
 With crack gas ([crack_gas] enabled = true), also:
   fig3_crack_gas_NNNNNN.png the grid gas's pressure with the cracks coloured by their own gas's pressure
-  crack_gas.png             gas mass in the cracks, their largest pressure and the hole-centre pressure
+  crack_gas.png             gas mass in the cracks, their largest pressure and the hole-centre pressure, and
+                            how far the hole's gas has gone through the cracks (crack_gas_front_radius_m)
 Needs Debian's python3-matplotlib and python3-vtk9 (/usr/bin/python3).
 """
 import os
+import re
 import sys
 
 import matplotlib
@@ -107,6 +109,16 @@ def fig4(out, gas_file, rock_file, t, zoom):
     return fig
 
 
+def outer_radius(out):
+    """The rock's outer radius [m] as summary.txt states it (the blasthole monitor's), or None."""
+    try:
+        with open(os.path.join(out, "summary.txt")) as f:
+            m = re.search(r"outer\s+radius \(([0-9.eE+-]+) m\)", f.read())
+        return float(m.group(1)) if m else None
+    except (OSError, ValueError):
+        return None
+
+
 def series_plots(out):
     hole = read_csv(os.path.join(out, "point_hole.csv"))
     if hole is not None:
@@ -129,16 +141,26 @@ def series_plots(out):
     if cs is None:
         return
     if "crack_gas_mass_kg_per_m" in cs and np.any(cs["crack_gas_mass_kg_per_m"] > 0):
-        fig, ax = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True, constrained_layout=True)
+        front = wall is not None and "crack_gas_front_radius_m" in wall
+        fig, ax = plt.subplots(3 if front else 2, 1, figsize=(6.4, 8.8 if front else 6.4), sharex=True,
+                               constrained_layout=True)
         t = cs["time_s"] * 1e3
         ax[0].plot(t, cs["crack_gas_mass_kg_per_m"] * 1e3)
         ax[0].set_ylabel("gas mass in the cracks [g/m]")
         ax[1].plot(t, cs["crack_gas_pressure_max_Pa"] / 1e6, label="largest crack gas pressure")
         if hole is not None:
             ax[1].plot(hole["t"] * 1e3, hole["p"] / 1e6, label="gas pressure at the hole centre")
-        ax[1].set_xlabel("time [ms]")
         ax[1].set_ylabel("[MPa]")
+        ax[1].set_yscale("log")  # a crack pressed shut on its gas can spike by orders of magnitude
         ax[1].legend()
+        if front:  # how far the hole's gas has gone through the cracks (wall_series.csv)
+            ax[2].plot(wall["time_s"] * 1e3, wall["crack_gas_front_radius_m"], label="crack gas front (above 1/4 of the hole-wall pressure)")
+            outer = outer_radius(out)
+            if outer is not None:
+                ax[2].axhline(outer, color="grey", lw=0.8, ls="--", label="the rock's outer surface")
+            ax[2].set_ylabel("distance from the hole centre [m]")
+            ax[2].legend()
+        ax[-1].set_xlabel("time [ms]")
         save(fig, out, "crack_gas.png")
     t = cs["time_s"] * 1e3
     fig, ax = plt.subplots()

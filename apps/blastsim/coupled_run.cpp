@@ -103,12 +103,15 @@ class BlastholeFiles {
     const double crack_outer = coupler_.crack_gas()
                                    ? coupler_.crack_mouth_pressure(g.center, 0.5 * (g.hole_radius + g.outer_radius))
                                    : 0.0;
-    if (crack_arrival_ < 0 && crack_outer > 2 * monitor_->ambient_pressure())
-      crack_arrival_ = s.time, crack_arrival_pressure_ = crack_outer;
-    file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}", s.time,
-                           s.wall_pressure_mean, s.wall_pressure_min, s.wall_pressure_max, s.wall_stress_mean,
+    // The hole's gas in the cracks: above a quarter of the gas pressure at the hole wall (and twice the ambient),
+    // which the outside air that dry cracks draw in through the free face does not reach.
+    const double hole_gas = std::max(0.25 * s.wall_pressure_mean, 2 * monitor_->ambient_pressure());
+    const double front = coupler_.crack_gas_front(g.center, hole_gas);
+    if (crack_arrival_ < 0 && crack_outer > hole_gas) crack_arrival_ = s.time, crack_arrival_pressure_ = crack_outer;
+    file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
+                           s.time, s.wall_pressure_mean, s.wall_pressure_min, s.wall_pressure_max, s.wall_stress_mean,
                            s.wall_stress_min, s.wall_stress_max, s.wall_stress_spread, s.broken_joints, s.crack_length,
-                           s.outer_pressure_max, s.outer_speed_max, s.outer_flux_speed, crack_outer));
+                           s.outer_pressure_max, s.outer_speed_max, s.outer_flux_speed, crack_outer, front));
   }
 
   //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
@@ -140,9 +143,9 @@ class BlastholeFiles {
       out << fmt::format("gas speed at the onset: {}\n  the largest outward speed among those points at the first "
                          "outflow sample\n", ev.ejection < 0 ? std::string("-") : fmt::format("{:.1f} m/s", ev.ejection_speed));
       if (coupler_.crack_gas())
-        out << fmt::format("crack gas reaches the outer free face: {}\n  the first sample where the gas in a crack, at a "
-                           "crack mouth on the rock's outer surface, exceeds twice the\n  ambient pressure; pressure "
-                           "there then {:.4g} Pa\n",
+        out << fmt::format("the hole's gas reaches the outer free face through the cracks: {}\n  the first sample "
+                           "where the gas in a crack, at a crack mouth on the rock's outer surface, exceeds a\n  quarter of "
+                           "the gas pressure at the hole wall (and twice the ambient); pressure there then {:.4g} Pa\n",
                            when(crack_arrival_), crack_arrival_pressure_);
       out << fmt::format("broken joints: {}; crack length {:.4f} m; fracture energy {:.4e} J/m\n", e.broken_joints,
                          e.crack_length, e.fracture_dissipated);
@@ -183,7 +186,7 @@ class BlastholeFiles {
            "rock_radial_stress_wall_mean_Pa,rock_radial_stress_wall_min_Pa,rock_radial_stress_wall_max_Pa,"
            "rock_radial_stress_wall_sector_spread,broken_joints,crack_length_m,outer_surface_gas_pressure_max_Pa,"
            "outer_surface_gas_speed_max_m_per_s,outer_surface_gas_speed_flux_mean_m_per_s,"
-           "outer_surface_crack_gas_pressure_max_Pa";
+           "outer_surface_crack_gas_pressure_max_Pa,crack_gas_front_radius_m";
   }
 };
 

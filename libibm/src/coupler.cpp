@@ -388,6 +388,21 @@ double GasRockCoupler::crack_mouth_pressure(std::array<double, 2> center, double
   });
 }
 
+double GasRockCoupler::crack_gas_front(std::array<double, 2> center, double pressure) const {
+  if (!crack_) return 0.0;
+  const CrackNetworkView n = crack_->network();
+  const fdem::RockView rock = rock_.view();
+  const double cx = center[0], cy = center[1];
+  return reduce_max("ibm.crack.front", static_cast<index_t>(rock.joints), 0.0, [=] BLAST_HD(index_t si) {
+    const int s = static_cast<int>(si);
+    if (n.kind[s] != kSegmentGas || !(n.prim[s].p > pressure)) return 0.0;
+    const fdem::JointNodes jn = rock.joint_nodes[s];
+    const double dx = 0.25 * (rock.x[jn.a0] + rock.x[jn.a1] + rock.x[jn.b0] + rock.x[jn.b1]) - cx;
+    const double dy = 0.25 * (rock.y[jn.a0] + rock.y[jn.a1] + rock.y[jn.b0] + rock.y[jn.b1]) - cy;
+    return sqrt(dx * dx + dy * dy);
+  });
+}
+
 double GasRockCoupler::mat_ambient_pressure() const {
   return gas_.materials().air.pressure(ambient_.density, ambient_.internal_energy);
 }

@@ -129,6 +129,10 @@ class GasRockCoupler {
   //! from `center` (e.g. on the outer free face of a disc around a hole); 0 without crack gas (a device
   //! reduction).
   double crack_mouth_pressure(std::array<double, 2> center, double radius) const;
+  //! The crack gas's front [m]: the largest distance from `center` of the midpoint of a crack that holds its
+  //! own gas above `pressure` [Pa] (e.g. a quarter of the blasthole's pressure: how far the hole's gas has gone
+  //! through the crack network); 0 when none does or without crack gas (a device reduction).
+  double crack_gas_front(std::array<double, 2> center, double pressure) const;
   CrackGas* crack_gas() { return crack_.get(); }
 
   //! Places explosive charges in the gas (docs/coupling.md "Charges"): the cells whose centres lie in a charge's
