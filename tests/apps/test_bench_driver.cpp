@@ -56,7 +56,7 @@ TEST_CASE("Bad charges give one clear error naming the key", "[app][charges][bad
 }
 
 TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a charge fires ends byte for byte",
-          "[app][charges][restart]") {
+          "[long][app][charges][restart]") {
   const fs::path a = fresh_dir("bench_a"), b = fresh_dir("bench_b");
   std::ostringstream log;
   const app::CoupledCaseConfig ca = read(small_bench(a));

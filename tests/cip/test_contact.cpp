@@ -68,7 +68,7 @@ double reference_l1(int n, const Primitive& L, const Primitive& R, double x0, do
 
 }  // namespace
 
-TEST_CASE("G8 contact discontinuity: uniform p and u stay uniform, density stays within its data", "[cip][G8]") {
+TEST_CASE("G8 contact discontinuity: uniform p and u stay uniform, density stays within its data", "[long][cip][G8]") {
   const double rho0 = 0.345;
   for (double ratio : {10.0, 1000.0}) {
     for (bool dense_upstream : {false, true}) {
@@ -95,7 +95,7 @@ TEST_CASE("G8 contact discontinuity: uniform p and u stay uniform, density stays
 }
 
 TEST_CASE("G9 Toro's Riemann tests 1, 2, 4, 5: density L1 within 1.5 x MUSCL-Hancock/HLLC on 400 cells",
-          "[cip][G9]") {
+          "[long][cip][G9]") {
   // Toro (2009), Table 4.1, gamma = 1.4, diaphragm at 0.5 of the unit tube, output times of sec. 4.3.3.
   struct Case {
     int number;
@@ -121,7 +121,7 @@ TEST_CASE("G9 Toro's Riemann tests 1, 2, 4, 5: density L1 within 1.5 x MUSCL-Han
   }
 }
 
-TEST_CASE("G9 Sod: density L1 falls at order >= 0.8 from 200 to 1600 cells", "[cip][G9]") {
+TEST_CASE("G9 Sod: density L1 falls at order >= 0.8 from 200 to 1600 cells", "[long][cip][G9]") {
   const Primitive L{1.0, 0.0, 1.0}, R{0.125, 0.0, 0.1};
   const double e200 = blastsim_l1(200, L, R, 0.5, 0.2), e1600 = blastsim_l1(1600, L, R, 0.5, 0.2);
   const double order = std::log2(e200 / e1600) / 3;

@@ -75,7 +75,7 @@ ExplosionResult run_explosion(int n, const RadialProfile& ref) {
 
 }  // namespace
 
-TEST_CASE("G2 cylindrical explosion: rays agree and density matches the radial reference", "[cip][G2]") {
+TEST_CASE("G2 cylindrical explosion: rays agree and density matches the radial reference", "[long][cip][G2]") {
   // Reference: 1-D cylindrical finite volumes on 6000 cells over [0, 1.5] (covers the corners r = sqrt 2).
   const RadialProfile ref = solve_radial(6000, 1.5, 1.4, 0.25, [](double r) { return r < 0.4 ? 1.0 : 0.125; },
                                          [](double r) { return r < 0.4 ? 1.0 : 0.1; });

@@ -56,7 +56,7 @@ double shock_position(const std::vector<double>& p, double p_mid, double dx) {
 
 }  // namespace
 
-TEST_CASE("G6 the paper's seed states (Table 1): positive, finite, exact shock speed", "[cip][G6]") {
+TEST_CASE("G6 the paper's seed states (Table 1): positive, finite, exact shock speed", "[long][cip][G6]") {
   // Table 1: 163 kg/m3 at 4.29e5 J/kg (28 MPa) against 1.20 kg/m3 at 2.09e5 J/kg (0.1 MPa); gamma 1.4.
   const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);
   const Primitive L{163.0, 0.0, eos.pressure(163.0, 4.29e5)}, R{1.20, 0.0, eos.pressure(1.20, 2.09e5)};

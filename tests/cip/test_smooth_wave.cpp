@@ -52,7 +52,7 @@ double acoustic_wave_error(int n) {
 
 }  // namespace
 
-TEST_CASE("G4 smooth waves: observed order of accuracy", "[cip][G4]") {
+TEST_CASE("G4 smooth waves: observed order of accuracy", "[long][cip][G4]") {
   const double e1 = entropy_wave_error(32), e2 = entropy_wave_error(64), e3 = entropy_wave_error(128);
   const double order_entropy = std::log2(e2 / e3);
   std::printf("G4 entropy wave (2-D diagonal): L1(rho) %.3e / %.3e / %.3e at 32 / 64 / 128 cells, order %.2f then %.2f\n",

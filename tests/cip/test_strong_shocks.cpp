@@ -68,7 +68,7 @@ double seed_shock_error(int n, cip::Transport transport) {
 
 }  // namespace
 
-TEST_CASE("G7 cylindrical Sedov blast: shock radius and energy (conservative transport)", "[cip][G7]") {
+TEST_CASE("G7 cylindrical Sedov blast: shock radius and energy (conservative transport)", "[long][cip][G7]") {
   const double exact = 1.00402;  // xi0 (E t^2 / rho0)^(1/4) with E = rho0 = t = 1
   double previous_peak = 0;
   for (int n : {120, 240}) {
@@ -83,7 +83,7 @@ TEST_CASE("G7 cylindrical Sedov blast: shock radius and energy (conservative tra
   }
 }
 
-TEST_CASE("Strong shock: position error of the 277:1 seed-state shock falls with resolution", "[cip][G7][convergence]") {
+TEST_CASE("Strong shock: position error of the 277:1 seed-state shock falls with resolution", "[long][cip][G7][convergence]") {
   const double e1 = seed_shock_error(200, cip::Transport::conservative);
   const double e2 = seed_shock_error(400, cip::Transport::conservative);
   const double e3 = seed_shock_error(800, cip::Transport::conservative);
@@ -93,7 +93,7 @@ TEST_CASE("Strong shock: position error of the 277:1 seed-state shock falls with
 }
 
 TEST_CASE("Paper's transport against the conservative one on the strong-shock cases (reported)",
-          "[cip][G7][compare]") {
+          "[long][cip][G7][compare]") {
   const SedovResult paper = sedov(120, cip::Transport::paper);
   const SedovResult cons = sedov(120, cip::Transport::conservative);
   std::printf("G7 Sedov 120x120: paper's transport radius %.4f energy %.4f; conservative radius %.4f energy %.6f\n",

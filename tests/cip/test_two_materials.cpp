@@ -64,7 +64,7 @@ TEST_CASE("G11 the two-material exact Riemann solver reproduces Toro's ideal-gas
   CHECK_THAT(MieGruneisenRiemann(kAir, L4, kAir, R4).p_star(), WithinRel(ExactRiemann(L4, R4, 1.4).p_star(), 1e-6));
 }
 
-TEST_CASE("G11 a products | air interface moving at uniform p and u keeps them uniform", "[cip][G11]") {
+TEST_CASE("G11 a products | air interface moving at uniform p and u keeps them uniform", "[long][cip][G11]") {
   const double p = 2e8, speed = 3000.0, rho_air = 0.3;  // [Pa], [m/s], [kg/m3]
   for (double ratio : {100.0, 1000.0})
   for (double u : {speed, -speed}) {  // products behind the interface, moving right; or moving left
@@ -97,7 +97,7 @@ TEST_CASE("G11 a products | air interface moving at uniform p and u keeps them u
   }
 }
 
-TEST_CASE("G11 shock tubes of ANFO products into air against the exact solution", "[cip][G11]") {
+TEST_CASE("G11 shock tubes of ANFO products into air against the exact solution", "[long][cip][G11]") {
   const cip::GasMaterials mat = anfo_and_air();
   const Primitive air{1.2, 0.0, 1.0e5};
   struct Case {

@@ -35,7 +35,7 @@ void polar_stress(const RockSnapshot& s, int t, double& r, double& sr, double& s
 }
 }  // namespace
 
-TEST_CASE("F2: Lame thick cylinder under inner pressure, quasi-static", "[fdem][F2][gmsh]") {
+TEST_CASE("F2: Lame thick cylinder under inner pressure, quasi-static", "[long][fdem][F2][gmsh]") {
   const double a = 0.02, b = 0.1, h = 0.004, p = 2.0e6;  // below the tensile strength: no cracking
   const NamedMesh m = gmsh_disc_with_hole(0, 0, b, a, h);
   const FdemTopology topo = build_topology(m.mesh);
@@ -132,7 +132,7 @@ BrazilianResult brazilian(double R, double h, bool joints_along_diameter) {
 }  // namespace
 
 TEST_CASE("F6: Brazilian disc: tensile strength from the peak load, crack along the loaded diameter",
-          "[fdem][F6][gmsh]") {
+          "[long][fdem][F6][gmsh]") {
   const double ft = RockMaterial::paper_table2().tensile_strength;
   const BrazilianResult aligned = brazilian(0.05, 0.004, true);
   const BrazilianResult free_mesh = brazilian(0.05, 0.004, false);
@@ -196,7 +196,7 @@ UniaxialResult uniaxial(double W, double H, double h, bool plane_at_mc_angle) {
 }
 }  // namespace
 
-TEST_CASE("F8: uniaxial compression strength near 2 c cos(phi) / (1 - sin(phi))", "[fdem][F8][gmsh]") {
+TEST_CASE("F8: uniaxial compression strength near 2 c cos(phi) / (1 - sin(phi))", "[long][fdem][F8][gmsh]") {
   const RockMaterial rock = RockMaterial::paper_table2();
   const double expected = 2 * rock.cohesion * std::cos(rock.friction_angle) / (1 - std::sin(rock.friction_angle));
   const double W = 0.05, H = 0.1;

@@ -173,7 +173,7 @@ TEST_CASE("F3: fracture energy per unit crack length equals G_I and G_II at two 
 }
 
 TEST_CASE("F5: two equal elastic bars collide: momentum, swapped velocities, energy, contact time",
-          "[fdem][F5][contact]") {
+          "[long][fdem][F5][contact]") {
   // 80 x 8 squares per bar: the lattice's dispersion leaves 1.7 % of the energy ringing inside the bars
   // after they part (40 x 8: 2.5 %), so this is the coarsest mesh that meets the 2 % bound.
   const double L = 0.1, H = 0.02, v0 = 1.0, gap = 1e-4;

@@ -87,7 +87,7 @@ ibm::Charge charge_at(double x, double y, double hole_radius, double radius, dou
 }  // namespace
 
 TEST_CASE("K1 a decoupled charge in a rigid hole settles to one pressure of its products and the air",
-          "[ibm][charges][K1]") {
+          "[long][ibm][charges][K1]") {
   // ANFO, radius 25 mm, in a rigid hole of 40 mm with air in the gap; 3 mm cells.
   const double a = 0.04, rc = 0.025, t_end = 800e-6;
   ChargedBlock blk(80, 0.12, 0.1, {{{0.0, 0.0}, a}}, 0.01, {charge_at(0, 0, a, rc, 0.0)}, true);

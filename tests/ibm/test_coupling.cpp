@@ -249,7 +249,7 @@ using test::HoleInRock;
 using test::intact_rock;
 using test::table1_gas;
 
-TEST_CASE("Coupled energy: gas energy lost by a pressurised hole equals the work done on intact rock", "[ibm][energy]") {
+TEST_CASE("Coupled energy: gas energy lost by a pressurised hole equals the work done on intact rock", "[long][ibm][energy]") {
   // Table 1 gas in a 20 mm hole of a 100 mm disc of elastic rock, in air. Budget of the whole gas: what it
   // lost (less what left the grid, plus what cell transitions and immersed faces gave it) against the work of the edge
   // pressures on the rock (RockEnergies::pressure_work). Bound 5 % (issue #4). The cut cells around the
@@ -311,7 +311,7 @@ TEST_CASE("Rock subcycling: the energy budget closes and the rock responds as wi
   CHECK_THAT(es.kinetic + es.strain, WithinRel(e1.kinetic + e1.strain, 0.02));
 }
 
-TEST_CASE("I4: pressurised hole in elastic rock: wall stress = gas pressure, symmetric, Lame far field", "[ibm][I4]") {
+TEST_CASE("I4: pressurised hole in elastic rock: wall stress = gas pressure, symmetric, Lame far field", "[long][ibm][I4]") {
   // Hole a = 20 mm in a disc R = 150 mm, Table 1 gas (27.97 MPa) suddenly applied, air (0.1 MPa) outside.
   // At 40 us the near field has settled and the wave reflected from the outer surface has not come back
   // ((2R - 2a)/c_p = 49 us). Per 45-degree sector, sigma_rr of the triangles within 3a is fitted by Lame's
@@ -368,7 +368,7 @@ fdem::RockMaterial soft_rock() {
   return m;
 }
 
-TEST_CASE("I5: gas enters a pre-cut crack from the hole and loads its faces", "[ibm][I5]") {
+TEST_CASE("I5: gas enters a pre-cut crack from the hole and loads its faces", "[long][ibm][I5]") {
   // A 40 mm radial crack from the wall of a 20 mm hole along y = 0, where a row of y-faces lies. The crack
   // opens under the hole pressure; gas enters once it opens to the grid scale. Expected: arrival later with
   // distance along the crack, never faster than the gas's escape speed 2c/(gamma - 1), and crack faces

@@ -46,7 +46,7 @@ TEST_CASE("C4 crack gas: grid + crack gas mass kept to round-off while cracks gr
   CHECK(std::fabs(b.residual / d.gas_work_on_rock) < 0.05);
 }
 
-TEST_CASE("C5 crack gas: a rigid crack filled from a hole settles to the lumped uniform state", "[ibm][crack][C5]") {
+TEST_CASE("C5 crack gas: a rigid crack filled from a hole settles to the lumped uniform state", "[long][ibm][crack][C5]") {
   // A 30 mm pre-cut crack from the wall of a 15 mm hole in rock held still, aperture 1 mm (residual; rigid
   // walls do not open it), no friction. Gas moves from the hole into the empty crack until both hold one
   // state: that of the same mass and energy in the sum of their volumes, p = (gamma - 1) E / V.
@@ -149,7 +149,7 @@ std::vector<double> crack_arrivals(int N, double t_max) {
 }  // namespace
 
 TEST_CASE("C6 crack gas: arrival along a sub-cell crack in the paper's rock does not depend on the grid",
-          "[ibm][crack][C6]") {
+          "[long][ibm][crack][C6]") {
   // The cut opens by microns under the gas (E = 55 GPa): far below both grids' cells (4 and 2 mm), so without
   // crack gas no gas would enter at all. With it, the gas's progress is the channel's, not the grid's.
   const std::vector<double> coarse = crack_arrivals(60, 2e-3), fine = crack_arrivals(120, 2e-3);
@@ -165,7 +165,7 @@ TEST_CASE("C6 crack gas: arrival along a sub-cell crack in the paper's rock does
 #endif
 
 #if defined(BLASTSIM_TEST_HAVE_GMSH)
-TEST_CASE("C7 crack gas: a crack held at a gas pressure opens as Sneddon's crack", "[ibm][crack][C7]") {
+TEST_CASE("C7 crack gas: a crack held at a gas pressure opens as Sneddon's crack", "[long][ibm][crack][C7]") {
   // A straight crack of half-length a (16 joints broken) in the middle of a square plate of the paper's rock
   // (E = 55 GPa, nu = 0.3, plane strain; strengths raised so that only the cut is a crack), half-width 5a,
   // damped. Its gas is held at p: a residual aperture of 1 m gives the crack a volume that the microns of
