@@ -84,8 +84,9 @@ int main(int argc, char** argv) {
     gas.initialise([&](double x, double y) { return x * x + y * y < r_fill * r_fill ? hole_gas : air; });
     const fdem::FdemTopology topo = fdem::build_topology(fdem::ring_disc_with_hole(0, 0, 0.93, 0.05, h).mesh);
     fdem::RockSolver rock(topo, fdem::RockMaterial::paper_table2(), fdem::RockOptions{});
-    ibm::GasRockCoupler coupler(gas, rock, air);
-    coupler.set_gas_load(load);
+    ibm::CouplerOptions coupling;
+    coupling.gas_load = load;
+    ibm::GasRockCoupler coupler(gas, rock, air, coupling);
     coupler.rock_to_gas();
     // After the first step the coupler has the signal rate (read with the rock's speed, one wait a step).
     auto one_step = [&] {

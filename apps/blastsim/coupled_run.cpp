@@ -98,16 +98,8 @@ class BlastholeFiles {
   void sample() {
     if (!monitor_ || gas_.time() < next_ - 1e-12 * c_.gas.end_time) return;
     advance_schedule(next_, c_.blasthole->interval, gas_.time() + 1e-12 * c_.gas.end_time);
-    const ibm::BlastholeSample s = monitor_->sample(gas_, rock_);
-    const ibm::BlastholeGeometry& g = monitor_->geometry();
-    const double crack_outer = coupler_.crack_gas()
-                                   ? coupler_.crack_mouth_pressure(g.center, 0.5 * (g.hole_radius + g.outer_radius))
-                                   : 0.0;
-    // The hole's gas in the cracks: above a quarter of the gas pressure at the hole wall (and twice the ambient),
-    // which the outside air that dry cracks draw in through the free face does not reach.
-    const double hole_gas = std::max(0.25 * s.wall_pressure_mean, 2 * monitor_->ambient_pressure());
-    const double front = coupler_.crack_gas_front(g.center, hole_gas);
-    if (crack_arrival_ < 0 && crack_outer > hole_gas) crack_arrival_ = s.time, crack_arrival_pressure_ = crack_outer;
+    const ibm::BlastholeSample s = monitor_->sample(gas_, rock_, coupler_.crack_gas());
+    const double crack_outer = s.outer_crack_pressure, front = s.crack_gas_front;
     file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
                            s.time, s.wall_pressure_mean, s.wall_pressure_min, s.wall_pressure_max, s.wall_stress_mean,
                            s.wall_stress_min, s.wall_stress_max, s.wall_stress_spread, s.broken_joints, s.crack_length,
@@ -146,7 +138,7 @@ class BlastholeFiles {
         out << fmt::format("the hole's gas reaches the outer free face through the cracks: {}\n  the first sample "
                            "where the gas in a crack, at a crack mouth on the rock's outer surface, exceeds a\n  quarter of "
                            "the gas pressure at the hole wall (and twice the ambient); pressure there then {:.4g} Pa\n",
-                           when(crack_arrival_), crack_arrival_pressure_);
+                           when(ev.crack_arrival), ev.crack_arrival_pressure);
       out << fmt::format("broken joints: {}; crack length {:.4f} m; fracture energy {:.4e} J/m\n", e.broken_joints,
                          e.crack_length, e.fracture_dissipated);
       out << analysis;
@@ -157,15 +149,12 @@ class BlastholeFiles {
     w.value("out.blasthole.next", next_);
     w.value("out.blasthole.events", monitor_ ? monitor_->events() : ibm::BlastholeEvents{});
     w.value("out.blasthole.csv_size", monitor_ ? file_->size() : std::uint64_t{0});
-    w.value("out.blasthole.crack_arrival", std::array<double, 2>{crack_arrival_, crack_arrival_pressure_});
   }
   void read_checkpoint(CheckpointReader& r) {
     next_ = r.value<double>("out.blasthole.next");
     if (!std::isfinite(next_)) r.fail("out.blasthole.next", "not finite");
     const ibm::BlastholeEvents ev = r.value<ibm::BlastholeEvents>("out.blasthole.events");
     const std::uint64_t size = r.value<std::uint64_t>("out.blasthole.csv_size");
-    const auto arrival = r.value<std::array<double, 2>>("out.blasthole.crack_arrival");
-    crack_arrival_ = arrival[0], crack_arrival_pressure_ = arrival[1];
     if (!monitor_) return;
     monitor_->restore(ev);
     file_->truncate_to(size);
@@ -179,7 +168,6 @@ class BlastholeFiles {
   std::optional<ibm::BlastholeMonitor> monitor_;  // only with [monitor.blasthole]
   std::optional<CsvSeries> file_;
   double next_ = 0;  // time of the next sample [s]
-  double crack_arrival_ = -1, crack_arrival_pressure_ = 0;  // crack gas at the outer surface: first sample [s], p [Pa]
 
   static std::string wall_header() {
     return "time_s,gas_pressure_wall_mean_Pa,gas_pressure_wall_min_Pa,gas_pressure_wall_max_Pa,"
@@ -194,8 +182,8 @@ class BlastholeFiles {
 //! every row of the coupling series, and their lines of summary.txt.
 class ChargeFiles {
  public:
-  ChargeFiles(const CoupledCaseConfig& c, const ibm::GasRockCoupler& coupler, bool resume)
-      : c_(c), coupler_(coupler), peak_(c.charges.size(), 0.0), peak_time_(c.charges.size(), -1.0) {
+  ChargeFiles(const CoupledCaseConfig& c, const cip::GasSolver& gas, const ibm::GasRockCoupler& coupler, bool resume)
+      : c_(c), gas_(gas), coupler_(coupler), peak_(c.charges.size(), 0.0), peak_time_(c.charges.size(), -1.0) {
     if (c.charges.empty()) return;
     std::string h = "time_s";
     for (std::size_t k = 0; k < c.charges.size(); ++k)
@@ -204,7 +192,8 @@ class ChargeFiles {
   }
   void sample(double t) {
     if (!file_) return;
-    const std::vector<double> p = coupler_.charge_pressures(), e = coupler_.charge_energies();
+    const std::vector<double> p = coupler_.charges()->pressures(gas_, coupler_.ambient_pressure()),
+                              e = coupler_.charges()->energies(gas_);
     std::string row = fmt::format("{:.9e}", t);
     for (std::size_t k = 0; k < p.size(); ++k) {
       row += fmt::format(",{:.6e},{:.9e}", p[k], e[k]);
@@ -215,7 +204,7 @@ class ChargeFiles {
   //! summary.txt lines: per charge its initiation, its peak borehole pressure and the energy it released.
   std::string summary() const {
     if (c_.charges.empty()) return {};
-    const std::vector<double> e = coupler_.charge_energies();
+    const std::vector<double> e = coupler_.charges()->energies(gas_);
     const ibm::ChargeProducts& q = c_.charge_products;
     std::string out = fmt::format("charges: products start at {:g} kg/m3 and {:.4g} J/kg ({:.4g} Pa); borehole pressure = "
                                   "mean over the hole's active cells (charges.csv)\n",
@@ -252,6 +241,7 @@ class ChargeFiles {
 
  private:
   const CoupledCaseConfig& c_;
+  const cip::GasSolver& gas_;
   const ibm::GasRockCoupler& coupler_;
   std::optional<CsvSeries> file_;
   std::vector<double> peak_, peak_time_;  // per charge: the largest borehole pressure sampled [Pa] and when [s]
@@ -285,27 +275,21 @@ void check_same_case(const std::string& saved, const std::string& now, const std
 //! (ibm::plan_coupled_step: one dt for both, or the rock subcycling), or time.dt checked against both.
 class CoupledStepper : public Stepper {
  public:
-  CoupledStepper(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler,
-                 double rock_dt)
-      : c_(c), gas_(gas), rock_(rock), coupler_(coupler), rock_dt_(rock_dt),
-        rate_(checked_signal_rate(gas, c.gas.output_directory)) {}
+  CoupledStepper(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler)
+      : c_(c), gas_(gas), rock_(rock), coupler_(coupler) {}
   double time() const override { return gas_.time(); }
   long long steps() const override { return gas_.steps(); }
   double next_dt(double until) override {
     const CaseConfig& gc = c_.gas;
-    if (gc.fixed_dt) {
-      check_fixed_dt_courant(*gc.fixed_dt, rate_, gc.courant, gas_);
-      substeps_ = c_.rock_subcycling ? ibm::rock_substeps(*gc.fixed_dt, rock_dt_) : 1;
-      return *gc.fixed_dt;
-    }
-    until = std::min(until, coupler_.next_initiation(gas_.time()));  // a charge fires at its time
-    const ibm::CoupledStep s = ibm::plan_coupled_step(gas_.time(), gc.courant / rate_, rock_dt_, c_.rock_subcycling, until);
+    const ibm::CoupledStep s = coupler_.plan_step(until);  // charges due now burn first
+    checked_signal_rate(gas_, gc.output_directory, coupler_.signal_rate());
+    if (gc.fixed_dt) check_fixed_dt_courant(*gc.fixed_dt, coupler_.signal_rate(), gc.courant, gas_);
     substeps_ = s.rock_substeps;
     return s.dt;
   }
   void step(double dt) override {
     coupler_.step(dt, substeps_);  // rock -> gas, gas, gas -> rock, rock (throws InstabilityError on a non-finite rock)
-    rate_ = checked_signal_rate(gas_, c_.gas.output_directory, coupler_.signal_rate());
+    checked_signal_rate(gas_, c_.gas.output_directory, coupler_.signal_rate());
   }
   std::string progress_note() const override {
     const fdem::RockEnergies e = rock_.energies();
@@ -319,8 +303,6 @@ class CoupledStepper : public Stepper {
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   ibm::GasRockCoupler& coupler_;
-  double rock_dt_;
-  double rate_;       // gas signal rate [1/s] of the current state
   int substeps_ = 1;  // rock steps in the next (or last) gas step
 };
 
@@ -332,9 +314,9 @@ class CoupledRunOutputs : public RunOutputs {
                     const RockModel& model, std::ostream& log, bool resume)
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler), log_(log), gas_out_(c.gas, gas, log, false, resume),
         rock_out_(c.rock, model, resume), series_(c, gas, rock, coupler, resume), blasthole_(c, gas, rock, coupler, resume),
-        charges_(c, coupler, resume),
+        charges_(c, gas, coupler, resume),
         checkpoint_path_((std::filesystem::path(c.gas.output_directory) / "checkpoint.bin").string()) {
-    rock_out_.set_crack_gas(coupler.crack_gas());
+    rock_out_.set_crack_gas(coupler.crack_gas() ? &coupler.crack_gas()->crack_gas() : nullptr);
   }
 
   //! The state at the start of a new run.
@@ -443,8 +425,13 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   const double rock_dt = rock_time_step(c.rock, rock);  // checks a fixed dt against the rock's stable step
   cip::GasSolver gas(gc.grid, gc.materials(), gc.solver);
   gas.initialise([&](double x, double y) { return gc.initial_state(x, y); });
-  ibm::GasRockCoupler coupler(gas, rock, gc.ambient);
-  coupler.set_gas_load(c.gas_load);
+  ibm::CouplerOptions coupling;
+  coupling.gas_load = c.gas_load;
+  coupling.courant = gc.courant;
+  coupling.rock_dt = rock_dt;
+  coupling.rock_subcycling = c.rock_subcycling;
+  coupling.fixed_dt = gc.fixed_dt;
+  ibm::GasRockCoupler coupler(gas, rock, gc.ambient, coupling);
   if (c.crack_gas) coupler.enable_crack_gas(c.crack_gas_options);
   if (!c.charges.empty()) {
     coupler.set_charges(c.charges, c.charge_products);
@@ -462,7 +449,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
                      rock.joint_count(), rock.stable_dt(), ibm::gas_load_name(c.gas_load),
                      c.crack_gas ? fmt::format("crack gas on (residual aperture {:.3g} m, friction factor {:.3g}, {} junctions)",
                                                c.crack_gas_options.residual_aperture, c.crack_gas_options.friction_factor,
-                                               coupler.crack_gas()->junctions())
+                                               coupler.crack_gas()->crack_gas().junction_count())
                                  : std::string("crack gas off"));
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
   const std::string checkpoint_path = (std::filesystem::path(gc.output_directory) / "checkpoint.bin").string();
@@ -474,8 +461,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   CoupledRunOutputs outputs(c, gas, rock, coupler, model, log, resume);
   if (resume) outputs.read_checkpoint(*reader);
   else outputs.start();
-  coupler.fire_due_charges();  // charges at t = 0 burn before the first dt is chosen (after the initial outputs)
-  CoupledStepper stepper(c, gas, rock, coupler, rock_dt);
+  CoupledStepper stepper(c, gas, rock, coupler);
   run_loop(stepper, outputs, RunControl{gc.end_time, gc.max_steps, gc.progress_interval}, log, options);
 }
 

@@ -26,22 +26,23 @@ GasGrid GasGrid::from_box(int nx, int ny, double x0, double x1, double y0, doubl
 
 void GasSolver::accumulate_boundary_outflow(double dt) {
   const PaddedShape sh = grid_.padded_shape();
+  const detail::GasWork<Access::read> w = a_->work.read(sh);
+  const detail::MaterialWork<Access::read> mw = a_->material_work.read(sh);
   for_each_index(
       "cip.boundary_outflow", 2 * static_cast<index_t>(grid_.nx + grid_.ny),
-      OutflowLedgerKernel{BoundaryFlowKernel{a_->starred.view(sh), make_field_view(a_->pressure, sh), make_field_view(a_->mass_flux_x, sh),
-                         make_field_view(a_->mass_flux_y, sh), make_field_view(a_->energy_flux_x, sh),
-                         make_field_view(a_->energy_flux_y, sh), make_field_view(a_->products_flux_x, sh),
-                         make_field_view(a_->products_flux_y, sh), options_.transport == Transport::conservative,
-                         materials_.two, grid_, options_.boundaries},
-                          device_ptr(a_->outflow_ledger), dt});
+      OutflowLedgerKernel{BoundaryFlowKernel{a_->starred.read(sh), w.pressure, w.mass_flux_x, w.mass_flux_y,
+                                             w.energy_flux_x, w.energy_flux_y, mw.products_flux_x, mw.products_flux_y,
+                                             options_.transport == Transport::conservative, materials_.two, grid_,
+                                             options_.boundaries},
+                          a_->outflow_ledger.view(), dt});
 }
 
 BoundaryOutflow GasSolver::boundary_outflow() const {
-  const double* l = device_ptr(a_->outflow_ledger);
+  const OutflowLedger* l = a_->outflow_ledger.read().face;
   const TotalsSum t = reduce_sum("cip.outflow_total", 2 * static_cast<index_t>(grid_.nx + grid_.ny),
                                  TotalsSum{0, 0, 0, 0, 0, 0}, [=] BLAST_HD(index_t k) {
-                                   const double* e = l + kOutflowLedgerWidth * k;
-                                   return TotalsSum{e[0], e[1], e[2], e[3], 0.0, e[4]};
+                                   const OutflowLedger& e = l[k];
+                                   return TotalsSum{e.mass, e.momentum_x, e.momentum_y, e.energy, 0.0, e.products_mass};
                                  });
   BoundaryOutflow out;
   out.mass = t.m;
@@ -84,11 +85,14 @@ GasSolver::GasSolver(GasSolver&&) noexcept = default;
 GasSolver& GasSolver::operator=(GasSolver&&) noexcept = default;
 
 GasStateView GasSolver::state() { return a_->state.view(grid_.padded_shape()); }
-GasStateReadView GasSolver::state() const { return a_->state.view(grid_.padded_shape()); }
-MaterialView GasSolver::material_fields() { return a_->materials(grid_.padded_shape()); }
-MaterialReadView GasSolver::material_fields() const { return a_->materials(grid_.padded_shape()); }
+GasStateReadView GasSolver::state() const { return a_->state.read(grid_.padded_shape()); }
+MaterialView GasSolver::material_fields() { return a_->materials.view(grid_.padded_shape()); }
+MaterialReadView GasSolver::material_fields() const { return a_->materials.read(grid_.padded_shape()); }
+GasCells GasSolver::cells() { return {state(), material_fields(), materials_.two}; }
+GasCellsRead GasSolver::cells() const { return {state(), material_fields(), materials_.two}; }
 ImmersedBoundaryView GasSolver::immersed_boundary() { return a_->immersed.view(grid_.padded_shape()); }
-Field2D<double> GasSolver::pressure_with_viscosity() { return make_field_view(a_->pressure, grid_.padded_shape()); }
+ImmersedBoundaryReadView GasSolver::immersed_boundary() const { return a_->immersed.read(grid_.padded_shape()); }
+Field2D<double> GasSolver::pressure_with_viscosity() { return a_->work.view(grid_.padded_shape()).pressure; }
 
 void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_at) {
   const PaddedShape sh = grid_.padded_shape();
@@ -133,23 +137,21 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
     p_ref[2 * ny + nx + i] = p_at(i, ny - 1);
     w_ref[2 * ny + nx + i] = v[sh.offset(i, ny)];
   }
-  copy_from_host(a_->outflow_pressure, p_ref);
-  copy_from_host(a_->outflow_velocity, w_ref);
-  a_->state.resize(sh.size());
+  copy_from_host(a_->outflow_reference.pressure, p_ref);
+  copy_from_host(a_->outflow_reference.velocity, w_ref);
+  a_->state.for_each([&](const auto&, auto& v) { v.assign(sh.size(), 0.0); });
   copy_from_host(a_->state.rho.f, rho);
   copy_from_host(a_->state.e.f, e);
   copy_from_host(a_->state.u.f, u);
   copy_from_host(a_->state.v.f, v);
   if (materials_.two) {
-    copy_from_host(a_->alpha, alpha);
-    copy_from_host(a_->m1, m1);
+    copy_from_host(a_->materials.alpha, alpha);
+    copy_from_host(a_->materials.m1, m1);
   }
   time_ = 0.0;
   steps_ = 0;
-  fill_device("cip.clear_ledgers", a_->outflow_ledger, 0.0);
-  fill_device("cip.clear_ledgers", a_->solid_work_u, 0.0);
-  fill_device("cip.clear_ledgers", a_->solid_work_v, 0.0);
-  fill_device("cip.clear_ledgers", a_->positivity_heat, 0.0);
+  fill_device("cip.clear_ledgers", a_->outflow_ledger.face, OutflowLedger{0, 0, 0, 0, 0});
+  a_->ledgers.for_each([](const char*, DeviceVector<double>& v) { fill_device("cip.clear_ledgers", v, 0.0); });
   apply_boundaries();
   // Derivatives: zero in uniform regions and next to jumps between them (the paper's Table 1), centred
   // differences where the initial data are smooth (zero there would cost CIP its order of accuracy).
@@ -164,14 +166,11 @@ void GasSolver::apply_boundaries() {
 }
 
 BoundaryContext GasSolver::boundary_context() const {
-  return {options_.boundaries, materials_, material_fields(),
-          {device_ptr(a_->outflow_pressure), device_ptr(a_->outflow_velocity)}};
+  return {options_.boundaries, materials_, material_fields(), a_->outflow_reference.view()};
 }
 
 SignalRate GasSolver::signal_rate_kernel() const {
-  const ImmersedBoundaryView ib = a_->immersed.view(grid_.padded_shape());
-  return SignalRate{state(), material_fields(), {ib.cell_active.data, ib.cell_active.shape}, materials_, grid_.nx,
-                    grid_.dx, grid_.dy};
+  return SignalRate{state(), material_fields(), immersed_boundary().cell_active, materials_, grid_.nx, grid_.dx, grid_.dy};
 }
 
 double GasSolver::max_signal_rate() const {
@@ -184,9 +183,8 @@ bool GasSolver::fuse_kernels() const {
 }
 
 StepViews GasSolver::step_views() const {
-  const ImmersedBoundaryView ib = a_->immersed.view(grid_.padded_shape());
-  return {a_->state.view(grid_.padded_shape()), a_->starred.view(grid_.padded_shape()), ib.cell_active, ib.u_prescribed, ib.v_prescribed,
-          ib.u_imposed, ib.v_imposed};
+  const PaddedShape sh = grid_.padded_shape();
+  return {a_->state.view(sh), a_->starred.view(sh), a_->immersed.read(sh)};
 }
 
 void GasSolver::step(double dt) {
@@ -195,9 +193,9 @@ void GasSolver::step(double dt) {
   const StepViews v = step_views();
   const GasStateView& n = v.now;
   const GasStateView& s = v.starred;
-  const auto& active = v.active;
-  const auto &u_pres = v.u_prescribed, &v_pres = v.v_prescribed;
-  const auto &u_imp = v.u_imposed, &v_imp = v.v_imposed;
+  const auto& active = v.ib.cell_active;
+  const auto &u_pres = v.ib.u_prescribed, &v_pres = v.ib.v_prescribed;
+  const auto &u_imp = v.ib.u_imposed, &v_imp = v.ib.v_imposed;
   const Field2D<double> P = pressure_with_viscosity();
   const Field2D<const double> Pc{P.data, sh}, rho_n{n.rho.f.data, sh};
   const Field2D<const double> us{s.u.f.data, sh}, vs{s.v.f.data, sh};
@@ -246,10 +244,9 @@ void GasSolver::step(double dt) {
 }
 
 GasTotals GasSolver::totals(const CellRegion& region) const {
-  const ImmersedBoundaryView ib = a_->immersed.view(grid_.padded_shape());
   const TotalsSum t = reduce_sum(
       "cip.totals", static_cast<index_t>(grid_.nx) * grid_.ny, TotalsSum{0, 0, 0, 0, 0, 0},
-      TotalsOfCell{state(), material_fields(), materials_.two, {ib.cell_active.data, ib.cell_active.shape}, grid_.nx,
+      TotalsOfCell{state(), material_fields(), materials_.two, immersed_boundary().cell_active, grid_.nx,
                    grid_.cell_area(), grid_, region});
   GasTotals out;
   out.mass = t.m;
@@ -281,7 +278,7 @@ HostGasFields GasSolver::to_host() const {
   const std::vector<double> rho = blastsim::to_host(a_->state.rho.f), e = blastsim::to_host(a_->state.e.f);
   const std::vector<double> u = blastsim::to_host(a_->state.u.f), v = blastsim::to_host(a_->state.v.f);
   const std::vector<std::uint8_t> active = blastsim::to_host(a_->immersed.cell_active);
-  const std::vector<double> alpha = blastsim::to_host(a_->alpha), m1 = blastsim::to_host(a_->m1);
+  const std::vector<double> alpha = blastsim::to_host(a_->materials.alpha), m1 = blastsim::to_host(a_->materials.m1);
   HostGasFields h;
   h.nx = grid_.nx;
   h.ny = grid_.ny;
@@ -318,7 +315,7 @@ std::string GasSolver::describe_invalid_cell() const {
   const std::vector<double> rho = blastsim::to_host(a_->state.rho.f), e = blastsim::to_host(a_->state.e.f);
   const std::vector<double> u = blastsim::to_host(a_->state.u.f), v = blastsim::to_host(a_->state.v.f);
   const std::vector<std::uint8_t> active = blastsim::to_host(a_->immersed.cell_active);
-  const std::vector<double> alpha = blastsim::to_host(a_->alpha), m1 = blastsim::to_host(a_->m1);
+  const std::vector<double> alpha = blastsim::to_host(a_->materials.alpha), m1 = blastsim::to_host(a_->materials.m1);
   for (int j = 0; j < grid_.ny; ++j) {
     for (int i = 0; i < grid_.nx; ++i) {
       const index_t k = sh.offset(i, j);
@@ -388,17 +385,17 @@ void GasSolver::write_checkpoint(CheckpointWriter& w) const {
 }
 
 double GasSolver::immersed_face_work() const {
-  const double* wu = device_ptr(a_->solid_work_u);
-  const double* wv = device_ptr(a_->solid_work_v);
+  const double* wu = device_ptr(a_->ledgers.solid_work_u);
+  const double* wv = device_ptr(a_->ledgers.solid_work_v);
   return grid_.dx * grid_.dy *
-         reduce_sum("cip.solid_work", static_cast<index_t>(a_->solid_work_u.size()), 0.0,
+         reduce_sum("cip.solid_work", static_cast<index_t>(a_->ledgers.solid_work_u.size()), 0.0,
                     [=] BLAST_HD(index_t k) { return wu[k] + wv[k]; });
 }
 
 double GasSolver::positivity_energy() const {
-  const double* a = device_ptr(a_->positivity_heat);
+  const double* a = device_ptr(a_->ledgers.positivity_heat);
   return grid_.dx * grid_.dy *
-         reduce_sum("cip.positivity_energy", static_cast<index_t>(a_->positivity_heat.size()), 0.0,
+         reduce_sum("cip.positivity_energy", static_cast<index_t>(a_->ledgers.positivity_heat.size()), 0.0,
                     [=] BLAST_HD(index_t k) { return a[k]; });
 }
 
@@ -414,7 +411,7 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   if (steps_ < 0) r.fail("gas.steps", "negative");
   // The material fields exist exactly in a two-material run (an empty record matches a one-gas case only).
   const size_t material_size = materials_.two ? static_cast<size_t>(grid_.padded_shape().size()) : 0;
-  if (a_->alpha.size() != material_size || a_->m1.size() != material_size)
+  if (a_->materials.alpha.size() != material_size || a_->materials.m1.size() != material_size)
     r.fail("gas.alpha", materials_.two ? "empty: a checkpoint of a one-gas run, this case has detonation products"
                                        : "present: a checkpoint of a run with detonation products, this case has one gas");
   // The masks are flags: anything but 0 and 1 is damage.

@@ -15,8 +15,7 @@ void fill_material_ghosts(const MaterialView& m, const GasGrid& grid, const Boun
 //! phase (*) and the immersed-boundary input, read-only.
 struct StepViews {
   GasStateView now, starred;
-  Field2D<const std::uint8_t> active, u_prescribed, v_prescribed;
-  Field2D<const double> u_imposed, v_imposed;
+  ImmersedBoundaryReadView ib;
 };
 
 }  // namespace blastsim::cip

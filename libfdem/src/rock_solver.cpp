@@ -20,6 +20,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace blastsim::fdem {
 
@@ -127,8 +128,8 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   copy_from_host(a.edge_params.neighbour, slot_neighbour), copy_from_host(a.edge_params.joint, slot_joint);
   a.edges.joint_force.assign(3 * triangles_, SlotForce{{0.0, 0.0}, {0.0, 0.0}});
   copy_from_host(a.edges.exposed, exposed);
-  a.edges.pressure.assign(3 * triangles_, 0.0);
-  a.edges.node_load.assign(3 * triangles_, Vec2{0.0, 0.0});
+  a.edge_loads.pressure.assign(3 * triangles_, 0.0);
+  a.edge_loads.node_load.assign(3 * triangles_, Vec2{0.0, 0.0});
   copy_from_host(a.joint_params.nodes, joint_nodes_host_), copy_from_host(a.joint_params.strength, strength);
   copy_from_host(a.joint_params.length, joint_length);
   a.joints.damage.assign(joints_, JointPointDamage{{0, 0, 0}});
@@ -296,7 +297,7 @@ void RockSolver::finish_motion(double v_max) {
 void RockSolver::triangle_forces(double dt) {
   detail::RockArrays& a = *a_;
   for_each_index("fdem.triangles", triangles_,
-                 TriangleForceKernel{a.nodes.read(), a.triangle_params.view(), a.edges.read(), a.forces.view(),
+                 TriangleForceKernel{a.nodes.read(), a.triangle_params.view(), a.edges.read(), a.edge_loads.read(), a.forces.view(),
                                      a.triangles.view(), material_.lame_lambda(), material_.shear_modulus(),
                                      pressure_scale_, dt});
 }
@@ -394,12 +395,12 @@ void RockSolver::set_velocities(const std::vector<double>& vxy) {
 }
 
 void RockSolver::set_edge_pressure(const std::vector<int>& slots, double pressure) {
-  std::vector<double> p = to_host(a_->edges.pressure);
+  std::vector<double> p = to_host(a_->edge_loads.pressure);
   for (int s : slots) {
     if (s < 0 || s >= 3 * triangles_) throw InputError("edge slot " + std::to_string(s) + " does not exist");
     p[s] = pressure;
   }
-  copy_from_host(a_->edges.pressure, p);
+  copy_from_host(a_->edge_loads.pressure, p);
 }
 
 std::vector<int> RockSolver::joints_on_segment(double xa, double ya, double xb, double yb, double tolerance) const {
@@ -502,15 +503,17 @@ std::vector<ProbeSample> RockSolver::probe_samples() const {
 }
 
 RockView RockSolver::view() {
-  detail::RockArrays& a = *a_;
-  return {device_ptr(a.nodes.x),      device_ptr(a.nodes.y),        device_ptr(a.nodes.vx), device_ptr(a.nodes.vy),
-          device_ptr(a.edges.exposed), device_ptr(a.edges.pressure), device_ptr(a.edges.node_load), triangles_,
-          device_ptr(a.edge_params.joint), device_ptr(a.joint_params.nodes), device_ptr(a.joints.broken), joints_};
+  return {std::as_const(*this).view(), a_->edge_loads.view()};
 }
 
-std::vector<double> RockSolver::edge_pressures() const { return to_host(a_->edges.pressure); }
+RockReadView RockSolver::view() const {
+  const detail::RockArrays& a = *a_;
+  return {a.nodes.read(), a.edge_params.view(), a.edges.read(), a.joint_params.view(), a.joints.read(), triangles_, joints_};
+}
+
+std::vector<double> RockSolver::edge_pressures() const { return to_host(a_->edge_loads.pressure); }
 std::vector<std::uint8_t> RockSolver::edge_exposure() const { return to_host(a_->edges.exposed); }
-std::vector<Vec2> RockSolver::node_loads() const { return to_host(a_->edges.node_load); }
+std::vector<Vec2> RockSolver::node_loads() const { return to_host(a_->edge_loads.node_load); }
 
 RockEnergies RockSolver::energies() const {
   const detail::RockArrays& a = *a_;
@@ -598,9 +601,18 @@ RockSnapshot RockSolver::snapshot() const {
 void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.counts", std::array<int, 2>{triangles_, joints_});
   detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v, bool) { w.array(name, v); });
-  w.value("rock.scalars", std::array<double, 10>{time_, pressure_scale_, dt_prev_, cell_size_, grid_x0_, grid_y0_, buffer_,
-                                                 travel_since_build_, stable_dt_, last_speed_});
-  w.value("rock.integers", std::array<long, 4>{steps_, rebuilds_, grid_nx_, grid_ny_});
+  w.value("rock.time", time_);
+  w.value("rock.pressure_scale", pressure_scale_);
+  w.value("rock.previous_dt", dt_prev_);
+  w.value("rock.stable_dt", stable_dt_);
+  w.value("rock.last_speed", last_speed_);
+  w.value("rock.steps", steps_);
+  w.value("rock.contact.rebuilds", rebuilds_);
+  w.value("rock.contact.cell_size", cell_size_);
+  w.value("rock.contact.origin", std::array<double, 2>{grid_x0_, grid_y0_});
+  w.value("rock.contact.cells", std::array<int, 2>{grid_nx_, grid_ny_});
+  w.value("rock.contact.buffer", buffer_);
+  w.value("rock.contact.travel", travel_since_build_);
   w.array("rock.probes.peak", a_->probe_peak);
 }
 
@@ -623,17 +635,31 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
                      std::to_string(joints_));
   detail::RockArrays::for_each_checkpoint_array(
       *a_, [&](const std::string& name, auto& v, bool fixed) { r.array(name, v, fixed ? v.size() : 0); });
-  const std::array<double, 10> d = r.value<std::array<double, 10>>("rock.scalars");
-  for (size_t k = 0; k < d.size(); ++k)  // all finite; all but the grid origin (4, 5) non-negative
-    if (!std::isfinite(d[k]) || (k != 4 && k != 5 && d[k] < 0)) r.fail("rock.scalars", "a value is not finite or negative");
-  if (d[8] != stable_dt_) r.fail("rock.scalars", "its stable step differs from this mesh's (another mesh?)");
-  time_ = d[0], pressure_scale_ = d[1], dt_prev_ = d[2], cell_size_ = d[3], grid_x0_ = d[4], grid_y0_ = d[5];
-  buffer_ = d[6], travel_since_build_ = d[7], last_speed_ = d[9];
-  const std::array<long, 4> n = r.value<std::array<long, 4>>("rock.integers");
-  const long min_cells = options_.contact ? 1 : 0;  // without contact no grid is ever built
-  if (n[0] < 0 || n[1] < 0 || n[2] < min_cells || n[3] < min_cells || n[2] > (1L << 20) || n[3] > (1L << 20))
-    r.fail("rock.integers", "step count or contact grid size out of range");
-  steps_ = n[0], rebuilds_ = n[1], grid_nx_ = static_cast<int>(n[2]), grid_ny_ = static_cast<int>(n[3]);
+  // Each scalar by name: finite, and non-negative but for the contact grid's origin.
+  auto scalar = [&](const char* name) {
+    const double v = r.value<double>(name);
+    if (!std::isfinite(v) || v < 0) r.fail(name, "not a finite value >= 0");
+    return v;
+  };
+  time_ = scalar("rock.time");
+  pressure_scale_ = scalar("rock.pressure_scale");
+  dt_prev_ = scalar("rock.previous_dt");
+  if (scalar("rock.stable_dt") != stable_dt_) r.fail("rock.stable_dt", "differs from this mesh's (another mesh?)");
+  last_speed_ = scalar("rock.last_speed");
+  cell_size_ = scalar("rock.contact.cell_size");
+  buffer_ = scalar("rock.contact.buffer");
+  travel_since_build_ = scalar("rock.contact.travel");
+  const std::array<double, 2> origin = r.value<std::array<double, 2>>("rock.contact.origin");
+  if (!std::isfinite(origin[0]) || !std::isfinite(origin[1])) r.fail("rock.contact.origin", "not finite");
+  grid_x0_ = origin[0], grid_y0_ = origin[1];
+  steps_ = r.value<long>("rock.steps");
+  rebuilds_ = r.value<long>("rock.contact.rebuilds");
+  if (steps_ < 0 || rebuilds_ < 0) r.fail(steps_ < 0 ? "rock.steps" : "rock.contact.rebuilds", "negative");
+  const std::array<int, 2> cells = r.value<std::array<int, 2>>("rock.contact.cells");
+  const int min_cells = options_.contact ? 1 : 0;  // without contact no grid is ever built
+  for (const int n : cells)
+    if (n < min_cells || n > (1 << 20)) r.fail("rock.contact.cells", "contact grid size out of range");
+  grid_nx_ = cells[0], grid_ny_ = cells[1];
   r.array("rock.probes.peak", a_->probe_peak);  // set_probes() came first, as when it was written
   if (a_->probe_peak.size() != static_cast<size_t>(probes_))
     r.fail("rock.probes.peak", "holds " + std::to_string(a_->probe_peak.size()) + " probes, this case has " +

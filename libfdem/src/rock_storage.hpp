@@ -3,7 +3,7 @@
 //! the views the kernels take, and the checkpoint records, all generated from those lists.
 #pragma once
 
-#include "blastsim/core/backend.hpp"
+#include "blastsim/core/device_groups.hpp"
 #include "blastsim/fdem/fragment_kernels.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
 
@@ -11,39 +11,20 @@
 
 namespace blastsim::fdem::detail {
 
-#define BLASTSIM_STORAGE_MEMBER(type, name, comment) DeviceVector<type> name;
-#define BLASTSIM_VIEW_POINTER(type, name, comment) device_ptr(name),
-
-//! A group of owning arrays with read-only views (params, loads).
-#define BLASTSIM_CONST_GROUP(Group, LIST)                         \
-  struct Group##Arrays {                                          \
-    LIST(BLASTSIM_STORAGE_MEMBER)                                 \
-    Group view() const { return Group{LIST(BLASTSIM_VIEW_POINTER)}; } \
-  };
-//! A group of owning arrays with views of either access.
-#define BLASTSIM_STATE_GROUP(Group, LIST)                                       \
-  struct Group##Arrays {                                                        \
-    LIST(BLASTSIM_STORAGE_MEMBER)                                               \
-    template <Access A = Access::read_write>                                    \
-    Group<A> view() {                                                           \
-      return Group<A>{LIST(BLASTSIM_VIEW_POINTER)};                             \
-    }                                                                           \
-    Group<Access::read> read() const { return Group<Access::read>{LIST(BLASTSIM_VIEW_POINTER)}; } \
-  };
-
-BLASTSIM_CONST_GROUP(NodeParams, BLASTSIM_ROCK_NODE_PARAMS)
-BLASTSIM_CONST_GROUP(TriangleParams, BLASTSIM_ROCK_TRIANGLE_PARAMS)
-BLASTSIM_CONST_GROUP(EdgeParams, BLASTSIM_ROCK_EDGE_PARAMS)
-BLASTSIM_CONST_GROUP(JointParams, BLASTSIM_ROCK_JOINT_PARAMS)
-BLASTSIM_CONST_GROUP(NodeLoads, BLASTSIM_ROCK_NODE_LOADS)
-BLASTSIM_STATE_GROUP(NodeMotion, BLASTSIM_ROCK_NODE_MOTION)
-BLASTSIM_STATE_GROUP(NodeForces, BLASTSIM_ROCK_NODE_FORCES)
-BLASTSIM_STATE_GROUP(NodeLedger, BLASTSIM_ROCK_NODE_LEDGER)
-BLASTSIM_STATE_GROUP(TriangleState, BLASTSIM_ROCK_TRIANGLE_STATE)
-BLASTSIM_STATE_GROUP(EdgeState, BLASTSIM_ROCK_EDGE_STATE)
-BLASTSIM_STATE_GROUP(JointState, BLASTSIM_ROCK_JOINT_STATE)
-BLASTSIM_STATE_GROUP(ContactGrid, BLASTSIM_ROCK_CONTACT_GRID)
-BLASTSIM_STATE_GROUP(ContactPairs, BLASTSIM_ROCK_CONTACT_PAIRS)
+BLASTSIM_CONST_STORAGE(NodeParams, BLASTSIM_ROCK_NODE_PARAMS)
+BLASTSIM_CONST_STORAGE(TriangleParams, BLASTSIM_ROCK_TRIANGLE_PARAMS)
+BLASTSIM_CONST_STORAGE(EdgeParams, BLASTSIM_ROCK_EDGE_PARAMS)
+BLASTSIM_CONST_STORAGE(JointParams, BLASTSIM_ROCK_JOINT_PARAMS)
+BLASTSIM_CONST_STORAGE(NodeLoads, BLASTSIM_ROCK_NODE_LOADS)
+BLASTSIM_STATE_STORAGE(NodeMotion, BLASTSIM_ROCK_NODE_MOTION)
+BLASTSIM_STATE_STORAGE(NodeForces, BLASTSIM_ROCK_NODE_FORCES)
+BLASTSIM_STATE_STORAGE(NodeLedger, BLASTSIM_ROCK_NODE_LEDGER)
+BLASTSIM_STATE_STORAGE(TriangleState, BLASTSIM_ROCK_TRIANGLE_STATE)
+BLASTSIM_STATE_STORAGE(EdgeState, BLASTSIM_ROCK_EDGE_STATE)
+BLASTSIM_STATE_STORAGE(EdgeLoads, BLASTSIM_ROCK_EDGE_LOADS)
+BLASTSIM_STATE_STORAGE(JointState, BLASTSIM_ROCK_JOINT_STATE)
+BLASTSIM_STATE_STORAGE(ContactGrid, BLASTSIM_ROCK_CONTACT_GRID)
+BLASTSIM_STATE_STORAGE(ContactPairs, BLASTSIM_ROCK_CONTACT_PAIRS)
 
 //! All arrays of one RockSolver.
 struct RockArrays {
@@ -54,6 +35,7 @@ struct RockArrays {
   JointParamsArrays joint_params;
   // loads
   NodeLoadsArrays node_loads;
+  EdgeLoadsArrays edge_loads;
   // state
   NodeMotionArrays nodes;
   NodeForcesArrays forces;
@@ -79,30 +61,19 @@ struct RockArrays {
   //! Self is RockArrays or const RockArrays.
   template <class Self, class Fn>
   static void for_each_checkpoint_array(Self& a, Fn&& fn) {
-#define BLASTSIM_VISIT_ARRAY(type, name, comment) fn(prefix + #name, group.name, fixed);
-#define BLASTSIM_VISIT_GROUP(member, LIST, FIXED)            \
-  {                                                          \
-    auto& group = a.member;                                  \
-    const std::string prefix = "rock." #member ".";          \
-    const bool fixed = FIXED;                                \
-    LIST(BLASTSIM_VISIT_ARRAY)                               \
-  }
-    BLASTSIM_VISIT_GROUP(node_loads, BLASTSIM_ROCK_NODE_LOADS, true)
-    BLASTSIM_VISIT_GROUP(nodes, BLASTSIM_ROCK_NODE_MOTION, true)
-    BLASTSIM_VISIT_GROUP(forces, BLASTSIM_ROCK_NODE_FORCES, true)
-    BLASTSIM_VISIT_GROUP(ledger, BLASTSIM_ROCK_NODE_LEDGER, true)
-    BLASTSIM_VISIT_GROUP(triangles, BLASTSIM_ROCK_TRIANGLE_STATE, true)
-    BLASTSIM_VISIT_GROUP(edges, BLASTSIM_ROCK_EDGE_STATE, true)
-    BLASTSIM_VISIT_GROUP(joints, BLASTSIM_ROCK_JOINT_STATE, true)
-    BLASTSIM_VISIT_GROUP(grid, BLASTSIM_ROCK_CONTACT_GRID, false)
-#undef BLASTSIM_VISIT_GROUP
-#undef BLASTSIM_VISIT_ARRAY
+    auto group = [&](auto& arrays, const std::string& prefix, bool fixed) {
+      arrays.for_each([&](const char* name, auto& v) { fn(prefix + name, v, fixed); });
+    };
+    group(a.node_loads, "rock.node_loads.", true);
+    group(a.edge_loads, "rock.edge_loads.", true);
+    group(a.nodes, "rock.nodes.", true);
+    group(a.forces, "rock.forces.", true);
+    group(a.ledger, "rock.ledger.", true);
+    group(a.triangles, "rock.triangles.", true);
+    group(a.edges, "rock.edges.", true);
+    group(a.joints, "rock.joints.", true);
+    group(a.grid, "rock.grid.", false);
   }
 };
-
-#undef BLASTSIM_CONST_GROUP
-#undef BLASTSIM_STATE_GROUP
-#undef BLASTSIM_VIEW_POINTER
-#undef BLASTSIM_STORAGE_MEMBER
 
 }  // namespace blastsim::fdem::detail

@@ -36,7 +36,8 @@ BlastholeMonitor::BlastholeMonitor(const BlastholeGeometry& g, const cip::GasGri
   }
 }
 
-BlastholeSample BlastholeMonitor::sample(const cip::GasSolver& gas, const fdem::RockSolver& rock) {
+BlastholeSample BlastholeMonitor::sample(const cip::GasSolver& gas, const fdem::RockSolver& rock,
+                                         const CrackGasCoupling* crack) {
   BlastholeSample s;
   s.time = gas.time();
   const std::vector<cip::GasSample> g = gas.sample(points_);
@@ -75,6 +76,14 @@ BlastholeSample BlastholeMonitor::sample(const cip::GasSolver& gas, const fdem::
   if (ev.first_crack < 0 && e.broken_joints > 0) ev.first_crack = s.time;
   if (ev.ejection < 0 && out_p > 2 * p_ambient_) ev.ejection = s.time, ev.ejection_speed = out_speed, ev.ejection_pressure = out_p;
   if (ev.ejection >= 0 && s.outer_flux_speed > ev.jet_speed) ev.jet_speed = s.outer_flux_speed, ev.jet_time = s.time;
+  if (crack) {
+    const BlastholeGeometry& g = geometry_;
+    const double hole_gas = hole_gas_pressure(s.wall_pressure_mean);
+    s.outer_crack_pressure = crack->mouth_pressure(rock, g.center, 0.5 * (g.hole_radius + g.outer_radius));
+    s.crack_gas_front = crack->front(rock, g.center, hole_gas);
+    if (ev.crack_arrival < 0 && s.outer_crack_pressure > hole_gas)
+      ev.crack_arrival = s.time, ev.crack_arrival_pressure = s.outer_crack_pressure;
+  }
   return s;
 }
 

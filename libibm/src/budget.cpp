@@ -18,15 +18,14 @@ CoupledBudget coupled_budget(const cip::GasSolver& gas, const fdem::RockSolver& 
   b.gas_energy_out = gas.boundary_outflow().energy;
   b.other_external_work = b.rock.external_work - b.rock.pressure_work;
   const fdem::RockEnergies& e = b.rock;
-  const double crack = b.coupling.crack_gas ? b.coupling.crack.energy : 0.0;  // the gas in the cracks
-  const double now = b.gas.total_energy() + crack + b.gas_energy_out + e.kinetic + e.strain + e.joint_work + e.contact_work +
-                     e.damping_dissipated;
+  const CouplingDiagnostics& d = b.coupling;  // the processes' shares: held (crack gas), added (cells, charges)
+  const double now = b.gas.total_energy() + d.energy_held + b.gas_energy_out + e.kinetic + e.strain + e.joint_work +
+                     e.contact_work + e.damping_dissipated;
   b.immersed_face_work = gas.immersed_face_work();
   b.positivity_energy = gas.positivity_energy();
-  const ChargeTotals& q = b.coupling.charges;  // what burning put into the cells, less what they held
+  const ChargeTotals& q = d.charges;  // what burning put into the cells, less what they held
   b.charge_energy = q.detonation_energy - q.replaced_energy;
-  b.residual = now - (initial + b.other_external_work + b.coupling.transitions.energy_created + b.immersed_face_work +
-                      b.positivity_energy + b.charge_energy);
+  b.residual = now - (initial + b.other_external_work + d.energy_added + b.immersed_face_work + b.positivity_energy);
   return b;
 }
 

@@ -2,11 +2,9 @@
 //! \brief CrackGas: the crack graph's arrays, the channel step (crack_gas_kernels.hpp) and its host interface.
 #include "blastsim/ibm/crack_gas.hpp"
 
-#include "blastsim/core/backend.hpp"
+#include "blastsim/core/device_groups.hpp"
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/error.hpp"
-
-#include <thrust/fill.h>
 
 #include <cmath>
 #include <limits>
@@ -25,17 +23,23 @@ void CrackGasOptions::validate() const {
 }
 
 namespace detail {
+BLASTSIM_CONST_STORAGE(CrackGraph, BLASTSIM_CRACK_GRAPH)
+BLASTSIM_STATE_STORAGE(CrackGeometry, BLASTSIM_CRACK_GEOMETRY)
+BLASTSIM_STATE_STORAGE(CrackSegments, BLASTSIM_CRACK_SEGMENTS)
+BLASTSIM_STATE_STORAGE(CrackEndStates, BLASTSIM_CRACK_END_STATES)
+BLASTSIM_STATE_STORAGE(CrackEndFluxes, BLASTSIM_CRACK_END_FLUXES)
+BLASTSIM_STATE_STORAGE(CrackMouths, BLASTSIM_CRACK_MOUTHS)
+BLASTSIM_STATE_STORAGE(CrackDeposits, BLASTSIM_CRACK_DEPOSITS)
+//! The network's arrays: the graph (fixed), per segment its geometry and state, per end the step's work
+//! arrays, per junction its mouth and deposit.
 struct CrackArrays {
-  DeviceVector<int> segment_junction, junction_offset, junction_entry;  // the graph (fixed)
-  DeviceVector<double> length, aperture, volume;                        // per segment
-  DeviceVector<std::uint8_t> kind;
-  DeviceVector<ChannelConserved> cons;
-  DeviceVector<ChannelPrimitive> prim, face;  // per segment, per end
-  DeviceVector<ChannelFlux> out;              // per end
-  DeviceVector<double> end_area;              // per end
-  DeviceVector<std::uint8_t> mouth;           // per junction
-  DeviceVector<ChannelPrimitive> reservoir;   // per junction
-  DeviceVector<ChannelConserved> deposit;     // per junction
+  CrackGraphArrays graph;
+  CrackGeometryArrays geometry;
+  CrackSegmentsArrays segments;
+  CrackEndStatesArrays end_states;
+  CrackEndFluxesArrays end_fluxes;
+  CrackMouthsArrays mouths;
+  CrackDepositsArrays deposits;
 };
 }  // namespace detail
 
@@ -64,21 +68,21 @@ CrackGas::CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment
   std::vector<int> entry(offset[junctions]), fill(offset.begin(), offset.end() - 1);
   for (int end = 0; end < 2 * segments_; ++end) entry[fill[sj[end]]++] = end;  // ascending within a junction
   detail::CrackArrays& a = *a_;
-  copy_from_host(a.segment_junction, sj);
-  copy_from_host(a.junction_offset, offset);
-  copy_from_host(a.junction_entry, entry);
-  a.length.assign(segments_, 1.0);
-  a.aperture.assign(segments_, options_.residual_aperture);
-  a.volume.assign(segments_, options_.residual_aperture);
-  a.kind.assign(segments_, kSegmentNone);
-  a.cons.assign(segments_, ChannelConserved{0, 0, 0, 0, 0});
-  a.prim.assign(segments_, ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
-  a.face.assign(2 * static_cast<std::size_t>(segments_), ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
-  a.out.assign(2 * static_cast<std::size_t>(segments_), ChannelFlux{0, 0, 0, 0, 0});
-  a.end_area.assign(2 * static_cast<std::size_t>(segments_), 0.0);
-  a.mouth.assign(junctions_, 0);
-  a.reservoir.assign(junctions_, ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
-  a.deposit.assign(junctions_, ChannelConserved{0, 0, 0, 0, 0});
+  copy_from_host(a.graph.segment_junction, sj);
+  copy_from_host(a.graph.junction_offset, offset);
+  copy_from_host(a.graph.junction_entry, entry);
+  a.geometry.length.assign(segments_, 1.0);
+  a.geometry.aperture.assign(segments_, options_.residual_aperture);
+  a.segments.volume.assign(segments_, options_.residual_aperture);
+  a.segments.kind.assign(segments_, kSegmentNone);
+  a.segments.cons.assign(segments_, ChannelConserved{0, 0, 0, 0, 0});
+  a.segments.prim.assign(segments_, ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
+  a.end_states.face.assign(2 * static_cast<std::size_t>(segments_), ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
+  a.end_fluxes.out.assign(2 * static_cast<std::size_t>(segments_), ChannelFlux{0, 0, 0, 0, 0});
+  a.end_fluxes.end_area.assign(2 * static_cast<std::size_t>(segments_), 0.0);
+  a.mouths.open.assign(junctions_, 0);
+  a.mouths.reservoir.assign(junctions_, ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
+  a.deposits.deposit.assign(junctions_, ChannelConserved{0, 0, 0, 0, 0});
 }
 
 CrackGas::~CrackGas() = default;
@@ -88,8 +92,8 @@ CrackGas& CrackGas::operator=(CrackGas&&) noexcept = default;
 void CrackGas::set_geometry(const std::vector<double>& length, const std::vector<double>& aperture) {
   if (length.size() != static_cast<std::size_t>(segments_) || aperture.size() != length.size())
     throw InputError("crack gas: set_geometry needs one length and one aperture per segment");
-  copy_from_host(a_->length, length);
-  copy_from_host(a_->aperture, aperture);
+  copy_from_host(a_->geometry.length, length);
+  copy_from_host(a_->geometry.aperture, aperture);
 }
 
 void CrackGas::set_gas(const std::vector<std::uint8_t>& kind, const std::vector<ChannelConserved>& gas,
@@ -97,9 +101,9 @@ void CrackGas::set_gas(const std::vector<std::uint8_t>& kind, const std::vector<
   const auto n = static_cast<std::size_t>(segments_);
   if (kind.size() != n || gas.size() != n || volume.size() != n)
     throw InputError("crack gas: set_gas needs one kind, state and volume per segment");
-  copy_from_host(a_->kind, kind);
-  copy_from_host(a_->cons, gas);
-  copy_from_host(a_->volume, volume);
+  copy_from_host(a_->segments.kind, kind);
+  copy_from_host(a_->segments.cons, gas);
+  copy_from_host(a_->segments.volume, volume);
   update_primitives();
 }
 
@@ -112,46 +116,41 @@ void CrackGas::set_reservoirs(const std::vector<int>& junctions, const std::vect
     mouth[junctions[k]] = 1;
     res[junctions[k]] = states[k];
   }
-  copy_from_host(a_->mouth, mouth);
-  copy_from_host(a_->reservoir, res);
+  copy_from_host(a_->mouths.open, mouth);
+  copy_from_host(a_->mouths.reservoir, res);
 }
 
-CrackNetworkView CrackGas::network() {
-  detail::CrackArrays& a = *a_;
-  return {device_ptr(a.length), device_ptr(a.aperture), device_ptr(a.kind),     device_ptr(a.cons),
-          device_ptr(a.volume), device_ptr(a.prim),     device_ptr(a.face),     device_ptr(a.out),
-          device_ptr(a.end_area), device_ptr(a.mouth),  device_ptr(a.reservoir), device_ptr(a.deposit)};
-}
-
-CrackGraphView CrackGas::graph() const {
-  const detail::CrackArrays& a = *a_;
-  return {device_ptr(a.segment_junction), device_ptr(a.junction_offset), device_ptr(a.junction_entry), segments_,
-          junctions_};
-}
-
-CrackGas::Boundary CrackGas::boundary() {
-  return {device_ptr(a_->length), device_ptr(a_->aperture), device_ptr(a_->mouth), device_ptr(a_->reservoir)};
-}
+CrackGraph CrackGas::graph() const { return a_->graph.view(); }
+CrackGeometry<Access::read_write> CrackGas::geometry() { return a_->geometry.view(); }
+CrackGeometry<Access::read> CrackGas::geometry() const { return a_->geometry.read(); }
+CrackSegments<Access::read_write> CrackGas::segments() { return a_->segments.view(); }
+CrackSegments<Access::read> CrackGas::segments() const { return a_->segments.read(); }
+CrackMouths<Access::read_write> CrackGas::mouths() { return a_->mouths.view(); }
+CrackMouths<Access::read> CrackGas::mouths() const { return a_->mouths.read(); }
+CrackDeposits<Access::read> CrackGas::deposit_view() const { return a_->deposits.read(); }
 
 void CrackGas::update_primitives() {
-  for_each_index("crack.primitive", segments_, SegmentPrimitiveKernel{mat_, network()});
+  for_each_index("crack.primitive", segments_, SegmentPrimitiveKernel{mat_, a_->segments.view()});
 }
 
 double CrackGas::stable_dt() const {
-  CrackNetworkView n = const_cast<CrackGas*>(this)->network();
-  double rate = reduce_max("crack.rate", segments_, 0.0, SegmentRateOf{mat_, n});
+  const detail::CrackArrays& a = *a_;
+  const CrackGeometry<Access::read> geo = a.geometry.read();
+  const CrackSegments<Access::read> seg = a.segments.read();
+  double rate = reduce_max("crack.rate", segments_, 0.0, SegmentRateOf{mat_, geo, seg});
   // A mouth's reservoir gas enters at up to its vacuum front speed.
-  const CrackGraphView g = graph();
+  const CrackGraph g = a.graph.view();
+  const CrackMouths<Access::read> mouths = a.mouths.read();
   const cip::GasMaterials mat = mat_;
   rate = std::max(rate, reduce_max("crack.mouth_rate", junctions_, 0.0, [=] BLAST_HD(index_t ji) {
                     const int J = static_cast<int>(ji);
-                    if (!n.mouth[J]) return 0.0;
-                    const ChannelPrimitive r = n.reservoir[J];
-                    const double speed = r.c * fmax(1.0, 2.0 / mixture_gruneisen(mat, r.alpha));
+                    if (!mouths.open[J]) return 0.0;
+                    const ChannelPrimitive r = mouths.reservoir[J];
+                    const double speed = r.c * fmax(1.0, 2.0 / mat.mixture_gruneisen(r.alpha));
                     double best = 0.0;
                     for (int k = g.junction_offset[J]; k < g.junction_offset[J + 1]; ++k) {
                       const int s = g.junction_entry[k] / 2;
-                      if (n.kind[s] == kSegmentGas) best = fmax(best, speed / n.length[s]);
+                      if (seg.kind[s] == kSegmentGas) best = fmax(best, speed / geo.length[s]);
                     }
                     return best;
                   }));
@@ -164,12 +163,18 @@ void CrackGas::step(double dt) {
 }
 
 void CrackGas::step_from_primitives(double dt) {
-  const CrackNetworkView n = network();
-  const CrackGraphView g = graph();
-  for_each_index("crack.faces", segments_, FaceStateKernel{mat_, g, n, options_.second_order, dt});
-  for_each_index("crack.junctions", junctions_, JunctionFluxKernel{mat_, g, n, dt});
+  detail::CrackArrays& a = *a_;
+  const CrackGraph g = a.graph.view();
+  const CrackGeometry<Access::read> geo = a.geometry.read();
+  const CrackMouths<Access::read> mouths = a.mouths.read();
+  for_each_index("crack.faces", segments_,
+                 FaceStateKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.view(), options_.second_order, dt});
+  for_each_index("crack.junctions", junctions_,
+                 JunctionFluxKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.read(), a.end_fluxes.view(),
+                                    a.deposits.view(), dt});
   for_each_index("crack.update", segments_,
-                 SegmentUpdateKernel{n, ChannelFlowParams{options_.friction_factor, options_.viscosity}, dt});
+                 SegmentUpdateKernel{geo, a.segments.view(), a.end_fluxes.read(),
+                                     ChannelFlowParams{options_.friction_factor, options_.viscosity}, dt});
 }
 
 int CrackGas::advance(double dt) {
@@ -186,49 +191,50 @@ int CrackGas::advance(double dt) {
 
 CrackGasTotals CrackGas::totals(double reference_pressure) const {
   CrackGasTotals t;
-  const ChannelConserved* c = device_ptr(a_->cons);
-  const ChannelPrimitive* p = device_ptr(a_->prim);
-  const std::uint8_t* kind = device_ptr(a_->kind);
-  const double* vol = device_ptr(a_->volume);
+  const CrackSegments<Access::read> seg = a_->segments.read();
   auto sum = [&](const char* label, auto f) { return reduce_sum(label, segments_, 0.0, f); };
-  t.mass = sum("crack.mass", [=] BLAST_HD(index_t s) { return kind[s] == kSegmentGas ? c[s].m : 0.0; });
-  t.energy = sum("crack.energy", [=] BLAST_HD(index_t s) { return kind[s] == kSegmentGas ? c[s].E : 0.0; });
-  t.products_mass = sum("crack.products", [=] BLAST_HD(index_t s) { return kind[s] == kSegmentGas ? c[s].m1 : 0.0; });
-  t.volume = sum("crack.volume", [=] BLAST_HD(index_t s) { return kind[s] == kSegmentGas ? vol[s] : 0.0; });
-  t.gas_segments = std::lround(sum("crack.count", [=] BLAST_HD(index_t s) { return kind[s] == kSegmentGas ? 1.0 : 0.0; }));
+  t.mass = sum("crack.mass", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.cons[s].m : 0.0; });
+  t.energy = sum("crack.energy", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.cons[s].E : 0.0; });
+  t.products_mass =
+      sum("crack.products", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.cons[s].m1 : 0.0; });
+  t.volume = sum("crack.volume", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.volume[s] : 0.0; });
+  t.gas_segments =
+      std::lround(sum("crack.count", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? 1.0 : 0.0; }));
   const double wet = 1.5 * reference_pressure;
-  t.wet_segments = std::lround(
-      sum("crack.wet", [=] BLAST_HD(index_t s) { return kind[s] == kSegmentGas && p[s].p > wet ? 1.0 : 0.0; }));
+  t.wet_segments = std::lround(sum(
+      "crack.wet", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas && seg.prim[s].p > wet ? 1.0 : 0.0; }));
   t.max_pressure = reduce_max("crack.max_p", segments_, 0.0,
-                              [=] BLAST_HD(index_t s) { return kind[s] == kSegmentGas ? p[s].p : 0.0; });
+                              [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.prim[s].p : 0.0; });
   return t;
 }
 
-std::vector<ChannelConserved> CrackGas::gas() const { return to_host(a_->cons); }
-std::vector<ChannelPrimitive> CrackGas::primitives() const { return to_host(a_->prim); }
-std::vector<std::uint8_t> CrackGas::kinds() const { return to_host(a_->kind); }
-std::vector<double> CrackGas::apertures() const { return to_host(a_->aperture); }
-std::vector<double> CrackGas::volumes() const { return to_host(a_->volume); }
-std::vector<ChannelConserved> CrackGas::deposits() const { return to_host(a_->deposit); }
+std::vector<ChannelConserved> CrackGas::gas() const { return to_host(a_->segments.cons); }
+std::vector<ChannelPrimitive> CrackGas::primitives() const { return to_host(a_->segments.prim); }
+std::vector<std::uint8_t> CrackGas::kinds() const { return to_host(a_->segments.kind); }
+std::vector<double> CrackGas::apertures() const { return to_host(a_->geometry.aperture); }
+std::vector<double> CrackGas::volumes() const { return to_host(a_->segments.volume); }
+std::vector<ChannelConserved> CrackGas::deposits() const { return to_host(a_->deposits.deposit); }
 void CrackGas::clear_deposits() {
-  fill_device("crack.clear_deposits", a_->deposit, ChannelConserved{0, 0, 0, 0, 0});
+  fill_device("crack.clear_deposits", a_->deposits.deposit, ChannelConserved{0, 0, 0, 0, 0});
 }
 
+//! The checkpoint holds the segments' state and geometry (the graph comes from the mesh; the ends and the
+//! mouths are recomputed every step).
 void CrackGas::write_checkpoint(CheckpointWriter& w) const {
-  w.array("crack.kind", a_->kind);
-  w.array("crack.gas", a_->cons);
-  w.array("crack.volume", a_->volume);
-  w.array("crack.length", a_->length);
-  w.array("crack.aperture", a_->aperture);
+  a_->segments.for_each([&](const char* name, const auto& v) { w.array(std::string("crack.") + name, v); });
+  a_->geometry.for_each([&](const char* name, const auto& v) { w.array(std::string("crack.") + name, v); });
+}
+
+void CrackGas::check_kinds(const CheckpointReader& r) const {
+  for (const std::uint8_t k : to_host(a_->segments.kind))
+    if (k != kSegmentNone && k != kSegmentGas && k != kSegmentGrid) r.fail("crack.kind", "not a segment kind (0, 1 or 2)");
 }
 
 void CrackGas::read_checkpoint(CheckpointReader& r) {
   const auto n = static_cast<std::size_t>(segments_);
-  r.array("crack.kind", a_->kind, n);
-  r.array("crack.gas", a_->cons, n);
-  r.array("crack.volume", a_->volume, n);
-  r.array("crack.length", a_->length, n);
-  r.array("crack.aperture", a_->aperture, n);
+  a_->segments.for_each([&](const char* name, auto& v) { r.array(std::string("crack.") + name, v, n); });
+  a_->geometry.for_each([&](const char* name, auto& v) { r.array(std::string("crack.") + name, v, n); });
+  check_kinds(r);
   update_primitives();
 }
 

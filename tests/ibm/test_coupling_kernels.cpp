@@ -1,9 +1,12 @@
 //! \file test_coupling_kernels.cpp
-//! \brief The coupling kernels (coupling_step_kernels.hpp) called directly on a few cells of host arrays: the
-//! gas moved between cells that change state, and the work a crack's gas does on its walls.
-#include "blastsim/ibm/coupling_step_kernels.hpp"
+//! \brief The coupling kernels (immersed_boundary_kernels.hpp, crack_coupling_kernels.hpp) called directly on a
+//! few cells of host arrays: the gas moved between cells that change state, and the work a crack's gas does on
+//! its walls.
+#include "blastsim/ibm/crack_coupling_kernels.hpp"
+#include "blastsim/ibm/immersed_boundary_kernels.hpp"
 #include "catch.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -11,39 +14,45 @@
 using namespace blastsim;
 
 namespace {
-//! A small grid's cell arrays on the host (rho, e, u, v, masks, outputs, ledger).
+//! A small grid's cell arrays on the host (the gas state, masks, the cell update, the ledger), one gas.
 struct Patch {
   static constexpr int n = 5;
   PaddedShape shape{n + 1, n + 1, 2};
-  std::vector<double> rho, e, u, v, rho_next, e_next, ledger;
-  std::vector<std::uint8_t> old_active, new_active, changed;
+  std::vector<double> rho, e, u, v, zero;
+  std::vector<std::uint8_t> old_active, new_active, changed, prescribed;
+  std::vector<cip::CellContent> next;
+  std::vector<ibm::TransitionLedger> ledger;
   Patch()
-      : rho(shape.size(), 0.0), e(shape.size(), 0.0), u(shape.size(), 0.0), v(shape.size(), 0.0),
-        rho_next(shape.size(), 0.0), e_next(shape.size(), 0.0), ledger(4 * n * n, 0.0), old_active(shape.size(), 1),
-        new_active(shape.size(), 1), changed(shape.size(), 0) {
+      : rho(shape.size(), 0.0), e(shape.size(), 0.0), u(shape.size(), 0.0), v(shape.size(), 0.0), zero(shape.size(), 0.0),
+        old_active(shape.size(), 1), new_active(shape.size(), 1), changed(shape.size(), 0), prescribed(shape.size(), 0),
+        next(shape.size(), cip::CellContent{0, 0, 0, 0}), ledger(n * n, ibm::TransitionLedger{0, 0, 0, 0}) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) rho[shape.offset(i, j)] = 1.0 + 0.1 * i + 0.01 * j, e[shape.offset(i, j)] = 2e5 + 1e3 * j;
   }
   template <class T>
-  Field2D<const T> in(const std::vector<T>& a) const { return {a.data(), shape}; }
-  template <class T>
-  Field2D<T> out(std::vector<T>& a) { return {a.data(), shape}; }
+  Field2D<T> view(std::vector<T>& a) { return {a.data(), shape}; }
+  cip::CipFieldView unknown(std::vector<double>& f) { return {view(f), view(zero), view(zero)}; }
+  cip::GasCells cells() { return {{unknown(rho), unknown(e), unknown(u), unknown(v)}, cip::MaterialView{}, false}; }
+  //! The transition (what every cell holds after the move), then its application to the state.
   void run(double area, double rho_ambient, double e_ambient) {
-    const ibm::TransitionKernel k{in(old_active), in(new_active), in(rho), in(e), in(u), in(v), out(rho_next),
-                                  out(e_next), false, cip::MaterialReadView{}, cip::MaterialView{}, out(changed),
-                                  ledger.data(), n, n, area, rho_ambient, e_ambient, false};
+    const ibm::CellUpdate<Access::read_write> update{view(new_active), view(changed), view(next)};
+    const ibm::TransitionKernel k{view(old_active), update, cells(), {ledger.data()}, n, n, area, rho_ambient,
+                                  e_ambient, false};
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) k(i, j);
+    const ibm::ApplyTransitionKernel apply{update, view(zero), view(zero), view(old_active), cells()};
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) apply(i, j);
   }
-  //! Mass and internal energy per unit depth of the cells active in `mask`, from (r, s).
-  std::array<double, 2> totals(const std::vector<std::uint8_t>& mask, const std::vector<double>& r,
-                               const std::vector<double>& s, double area) const {
+  //! Mass and internal energy per unit depth of the cells active in `mask`.
+  std::array<double, 2> totals(const std::vector<std::uint8_t>& mask, double area) const {
     std::array<double, 2> t{0, 0};
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        if (mask[shape.offset(i, j)]) t[0] += r[shape.offset(i, j)] * area, t[1] += r[shape.offset(i, j)] * s[shape.offset(i, j)] * area;
+        if (mask[shape.offset(i, j)]) t[0] += rho[shape.offset(i, j)] * area, t[1] += rho[shape.offset(i, j)] * e[shape.offset(i, j)] * area;
     return t;
   }
+  double at(const std::vector<double>& a, int i, int j) const { return a[shape.offset(i, j)]; }
 };
 }  // namespace
 
@@ -54,20 +63,22 @@ TEST_CASE("Coupling kernels: a covered cell hands its gas to its neighbours, mas
   Patch p;
   const double area = 1e-4;
   p.new_active[p.shape.offset(2, 2)] = 0;
-  const std::array<double, 2> before = p.totals(p.old_active, p.rho, p.e, area);
+  const std::array<double, 2> before = p.totals(p.old_active, area);
+  const double given = p.at(p.rho, 2, 2), left = p.at(p.rho, 1, 2), above = p.at(p.rho, 2, 3), far = p.at(p.rho, 0, 0);
   p.run(area, 1.2, 2.09e5);
-  const std::array<double, 2> after = p.totals(p.new_active, p.rho_next, p.e_next, area);
+  const std::array<double, 2> after = p.totals(p.new_active, area);
   CHECK_THAT(after[0], Catch::Matchers::WithinRel(before[0], 1e-14));
   CHECK_THAT(after[1], Catch::Matchers::WithinRel(before[1], 1e-14));
   // Each of the four neighbours got a quarter of the covered cell's mass.
-  const double given = p.rho[p.shape.offset(2, 2)];
-  CHECK_THAT(p.rho_next[p.shape.offset(1, 2)], Catch::Matchers::WithinRel(p.rho[p.shape.offset(1, 2)] + 0.25 * given, 1e-14));
-  CHECK_THAT(p.rho_next[p.shape.offset(2, 3)], Catch::Matchers::WithinRel(p.rho[p.shape.offset(2, 3)] + 0.25 * given, 1e-14));
-  CHECK(p.rho_next[p.shape.offset(0, 0)] == p.rho[p.shape.offset(0, 0)]);  // far cells untouched
-  // The covered cell holds the ambient state; the ledger counts one covered cell and creates nothing.
-  CHECK(p.rho_next[p.shape.offset(2, 2)] == 1.2);
+  CHECK_THAT(p.at(p.rho, 1, 2), Catch::Matchers::WithinRel(left + 0.25 * given, 1e-14));
+  CHECK_THAT(p.at(p.rho, 2, 3), Catch::Matchers::WithinRel(above + 0.25 * given, 1e-14));
+  CHECK(p.at(p.rho, 0, 0) == far);  // far cells untouched
+  // The covered cell holds the ambient state and the new mask is installed; the ledger counts one covered
+  // cell and creates nothing.
+  CHECK(p.at(p.rho, 2, 2) == 1.2);
+  CHECK(p.old_active[p.shape.offset(2, 2)] == 0);
   double covered = 0, mass_created = 0;
-  for (int c = 0; c < Patch::n * Patch::n; ++c) covered += p.ledger[4 * c], mass_created += p.ledger[4 * c + 2];
+  for (const ibm::TransitionLedger& l : p.ledger) covered += l.covered, mass_created += l.mass_created;
   CHECK(covered == 1.0);
   CHECK(mass_created == 0.0);
 }
@@ -77,15 +88,16 @@ TEST_CASE("Coupling kernels: an uncovered cell starts from the ambient state and
   Patch p;
   const double area = 1e-4, rho_amb = 1.2, e_amb = 2.09e5;
   p.old_active[p.shape.offset(3, 1)] = 0;
+  const double neighbour = p.at(p.rho, 2, 1);
   p.run(area, rho_amb, e_amb);
-  CHECK(p.rho_next[p.shape.offset(3, 1)] == rho_amb);
-  CHECK(p.e_next[p.shape.offset(3, 1)] == e_amb);
-  const int c = 1 * Patch::n + 3;
-  CHECK(p.ledger[4 * c + 1] == 1.0);
-  CHECK_THAT(p.ledger[4 * c + 2], Catch::Matchers::WithinRel(rho_amb * area, 1e-15));
-  CHECK_THAT(p.ledger[4 * c + 3], Catch::Matchers::WithinRel(rho_amb * e_amb * area, 1e-15));
+  CHECK(p.at(p.rho, 3, 1) == rho_amb);
+  CHECK(p.at(p.e, 3, 1) == e_amb);
+  const ibm::TransitionLedger& l = p.ledger[1 * Patch::n + 3];
+  CHECK(l.uncovered == 1.0);
+  CHECK_THAT(l.mass_created, Catch::Matchers::WithinRel(rho_amb * area, 1e-15));
+  CHECK_THAT(l.energy_created, Catch::Matchers::WithinRel(rho_amb * e_amb * area, 1e-15));
   // Its neighbours keep their gas: the gas flows in through the solver, not by the transition.
-  CHECK(p.rho_next[p.shape.offset(2, 1)] == p.rho[p.shape.offset(2, 1)]);
+  CHECK(p.at(p.rho, 2, 1) == neighbour);
 }
 
 TEST_CASE("Coupling kernels: a crack's gas does p dV on its walls, and never more than keeps it positive",

@@ -22,7 +22,12 @@ const double block_half = 0.053;  // half the block's side before rotation [m] (
 struct TurnedBlock {
   cip::GasSolver gas{cip::GasGrid::from_box(40, 40, -0.2, 0.2, -0.2, 0.2), eos};
   fdem::RockSolver rock;
-  ibm::GasRockCoupler coupler{gas, rock, air};
+  ibm::GasRockCoupler coupler{gas, rock, air, face_forces()};
+  static ibm::CouplerOptions face_forces() {
+    ibm::CouplerOptions o;
+    o.gas_load = ibm::GasLoad::face_forces;
+    return o;
+  }
   static fdem::FdemTopology topology(double angle) {
     fdem::TriangleMesh m = fdem::structured_rectangle(6, 6, -block_half, block_half, -block_half, block_half);
     for (auto& v : m.vertices) {
@@ -31,9 +36,7 @@ struct TurnedBlock {
     }
     return fdem::build_topology(m);
   }
-  explicit TurnedBlock(double angle) : rock(topology(angle), fdem::RockMaterial::paper_table2(), fdem::RockOptions{}) {
-    coupler.set_gas_load(ibm::GasLoad::face_forces);
-  }
+  explicit TurnedBlock(double angle) : rock(topology(angle), fdem::RockMaterial::paper_table2(), fdem::RockOptions{}) {}
 };
 
 //! The gas's power [W/m] on its prescribed faces, sum over faces of u_imposed A (p_low - p_high) over the active

@@ -38,11 +38,15 @@ struct HoleInRock {
              const std::vector<fdem::Segment>& cracks = {}, ibm::GasLoad load = ibm::GasLoad::edge_pressures)
       : gas(cip::GasGrid::from_box(N, N, -w, w, -w, w), cip::EquationOfState::ideal(1.4)),
         rock(fdem::build_topology(fdem::gmsh_disc_with_hole(0, 0, R, a, h, cracks).mesh), m, no_contact()),
-        coupler(gas, rock, table1_air) {
+        coupler(gas, rock, table1_air, options_for(load)) {
     const double r_fill = a + 1.5 * 2 * w / N;
     gas.initialise([&](double x, double y) { return x * x + y * y < r_fill * r_fill ? table1_gas : table1_air; });
-    coupler.set_gas_load(load);
     coupler.rock_to_gas();
+  }
+  static ibm::CouplerOptions options_for(ibm::GasLoad load) {
+    ibm::CouplerOptions o;
+    o.gas_load = load;
+    return o;
   }
   static fdem::RockOptions no_contact() {
     fdem::RockOptions o;

@@ -4,6 +4,8 @@
 //! and what it writes. Plain header: no backend dependency.
 #pragma once
 
+#include "blastsim/core/field2d.hpp"
+
 #include <type_traits>
 
 namespace blastsim {
@@ -17,10 +19,25 @@ enum class Access {
 //! Pointer to T with the constness of access A.
 template <class T, Access A>
 using access_ptr = std::conditional_t<A == Access::read, const T*, T*>;
+//! 2-D view of a padded array of T with the constness of access A.
+template <class T, Access A>
+using access_field = Field2D<std::conditional_t<A == Access::read, const T, T>>;
 
 }  // namespace blastsim
 
 //! Helpers for field lists written once as X-macros `X(type, name, comment)` (see libfdem's rock_fields.hpp):
-//! BLASTSIM_VIEW_MEMBER declares a view's pointer member of access A, BLASTSIM_CONST_VIEW_MEMBER a const one.
+//! BLASTSIM_VIEW_MEMBER declares a view's pointer member of access A, BLASTSIM_CONST_VIEW_MEMBER a const one,
+//! BLASTSIM_FIELD_MEMBER a 2-D view (Field2D, on a padded grid shape) of access A. The owning storage comes
+//! from the same lists (core/device_groups.hpp).
 #define BLASTSIM_VIEW_MEMBER(type, name, comment) ::blastsim::access_ptr<type, A> name;
 #define BLASTSIM_CONST_VIEW_MEMBER(type, name, comment) const type* name;
+#define BLASTSIM_FIELD_MEMBER(type, name, comment) ::blastsim::access_field<type, A> name;
+//! Inside a view template Group<A> (any of the above): a read_write view converts to the read view of the same
+//! arrays; NAMES lists the members, e.g. LIST(BLASTSIM_MEMBER_NAME).
+#define BLASTSIM_MEMBER_NAME(type, name, comment) name,
+#define BLASTSIM_COMMA ,
+#define BLASTSIM_READ_CONVERSION(Group, NAMES)                                                          \
+  template <::blastsim::Access B = A, class = std::enable_if_t<B == ::blastsim::Access::read_write>>    \
+  BLAST_HD operator Group<::blastsim::Access::read>() const {                                           \
+    return {NAMES};                                                                                     \
+  }

@@ -2,6 +2,8 @@
 //! \brief Outer boundaries of the gas grid: non-reflecting outflow (the paper's), reflective wall, periodic.
 #pragma once
 
+#include "blastsim/core/access.hpp"
+
 #include "blastsim/core/macros.hpp"
 
 #include <string>
@@ -101,11 +103,13 @@ BLAST_HD inline double outflow_face_velocity(double w_inner, double w_ref, doubl
 }
 
 //! Reference (far-field) state of the outflow faces, one entry per boundary face in the order left rows
-//! [0, ny), right rows [ny, 2 ny), bottom columns [2 ny, 2 ny + nx), top columns [2 ny + nx, 2 ny + 2 nx):
-//! the pressure [Pa] of the adjacent cell and the outward-normal face velocity [m/s] at the start.
+//! [0, ny), right rows [ny, 2 ny), bottom columns [2 ny, 2 ny + nx), top columns [2 ny + nx, 2 ny + 2 nx),
+//! set by GasSolver::initialise() (a field list: core/access.hpp).
+#define BLASTSIM_GAS_OUTFLOW_REFERENCE(X)                                             \
+  X(double, pressure, "pressure of the cell beside each boundary face at the start [Pa]") \
+  X(double, velocity, "outward face velocity at the start [m/s]")
 struct OutflowReference {
-  const double* pressure = nullptr;
-  const double* velocity = nullptr;
+  BLASTSIM_GAS_OUTFLOW_REFERENCE(BLASTSIM_CONST_VIEW_MEMBER)
 };
 
 }  // namespace blastsim::cip

@@ -21,8 +21,8 @@ struct BoundaryContext {
 
 //! Outward-normal velocity of the outflow boundary face on `side` at row/column t, from the cell state of
 //! s (cells b = boundary cell, bi = its inner neighbour; inner face fi). Shared by the fill and the step.
-template <class T>
-BLAST_HD inline double outflow_face_from_state(const BasicGasStateView<T>& s, const GasGrid& g, const BoundaryContext& ctx,
+template <Access A>
+BLAST_HD inline double outflow_face_from_state(const GasState<A>& s, const GasGrid& g, const BoundaryContext& ctx,
                                                int side, int t) {
   const bool xside = side == left || side == right;
   const bool low = side == left || side == bottom;
@@ -38,7 +38,7 @@ BLAST_HD inline double outflow_face_from_state(const BasicGasStateView<T>& s, co
   double p_face = 1.5 * p_b - 0.5 * p_i;
   if (!(p_face > 0.0)) p_face = p_b;
   const int r = side == left ? t : side == right ? g.ny + t : side == bottom ? 2 * g.ny + t : 2 * g.ny + g.nx + t;
-  const Field2D<T> w = xside ? s.u.f : s.v.f;
+  const access_field<double, A> w = xside ? s.u.f : s.v.f;
   return outflow_face_velocity(sign * at(w, fi), ctx.reference.velocity[r], p_face, ctx.reference.pressure[r], rho,
                                b_state.c);
 }

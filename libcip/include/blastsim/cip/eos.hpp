@@ -187,6 +187,21 @@ struct GasMaterials {
     if (has2) sum += m2 / rho * c2 * c2 / air.gruneisen();
     return sqrt(sum / xi);
   }
+  //! Effective Gruneisen coefficient of a mixture with products volume fraction alpha [-],
+  //! 1 / (alpha / Gamma1 + (1 - alpha) / Gamma2): p = Gamma (rho e - offsets); the air's without products.
+  BLAST_HD double mixture_gruneisen(double alpha) const {
+    if (!two) return air.gruneisen();
+    return 1.0 / (alpha / products.gruneisen() + (1.0 - alpha) / air.gruneisen());
+  }
+  //! Internal energy per unit volume rho e [J/m3] of a mixture at density rho [kg/m3], pressure p [Pa],
+  //! products volume fraction alpha [-] and mass fraction Y [-] (the inverse of pressure(); pure air below
+  //! kMinFraction).
+  BLAST_HD double internal_energy_density(double rho, double p, double alpha, double Y) const {
+    if (!two || !(alpha > kMinFraction)) return rho * air.internal_energy(rho, p);
+    const double a2 = 1.0 - alpha;
+    const double rho1 = Y * rho / alpha, rho2 = a2 > kMinFraction ? (1.0 - Y) * rho / a2 : 0.0;
+    return energy_density(p, alpha, rho1, rho2);
+  }
   //! Mixture internal energy per unit volume rho e [J/m3] at pressure p, volume fraction alpha and phase
   //! densities rho1, rho2 (the inverse of pressure()).
   BLAST_HD double energy_density(double p, double alpha, double rho1, double rho2) const {

@@ -61,7 +61,12 @@ class GasSolver {
   //! writing interior values, call apply_boundaries().
   MaterialView material_fields();
   MaterialReadView material_fields() const;
+  //! The cells with their material fields, for a coupler that moves gas between them (gas_state.hpp); after
+  //! writing, call apply_boundaries().
+  GasCells cells();
+  GasCellsRead cells() const;
   ImmersedBoundaryView immersed_boundary();
+  ImmersedBoundaryReadView immersed_boundary() const;
   //! Cell-centred pressure p + q of the last step's non-advection phase [Pa] (padded shape).
   Field2D<double> pressure_with_viscosity();
 

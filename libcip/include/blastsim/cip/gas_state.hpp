@@ -5,6 +5,7 @@
 
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/cip/grid.hpp"
+#include "blastsim/core/access.hpp"
 #include "blastsim/core/field2d.hpp"
 
 #include <cstdint>
@@ -12,45 +13,68 @@
 
 namespace blastsim::cip {
 
-//! View of one CIP unknown: value and its x and y derivatives on the same padded shape. T = double for a
-//! kernel that writes, const double for one that only reads (CipFieldReadView).
-template <class T>
-struct BasicCipFieldView {
-  Field2D<T> f, gx, gy;
-  //! A writable view converts to a read-only one.
-  template <class U = T, class = std::enable_if_t<!std::is_const_v<U>>>
-  BLAST_HD operator BasicCipFieldView<const U>() const {
-    return {f, gx, gy};
-  }
-};
-using CipFieldView = BasicCipFieldView<double>;
-using CipFieldReadView = BasicCipFieldView<const double>;
+//! The gas's arrays, each declared once in a field list (core/access.hpp; the storage, generated from the same
+//! lists, is libcip/src/gas_storage.hpp). Every array lives on the grid's padded shape (grid.hpp has the index
+//! conventions); the views below are Field2D views of access A.
+//!
+//! The CIP unknowns X(name, comment): each a value with its x and y derivatives.
+#define BLASTSIM_GAS_UNKNOWNS(X)                         \
+  X(rho, "density [kg/m3] at cell centres")              \
+  X(e, "specific internal energy [J/kg] at cell centres") \
+  X(u, "x velocity [m/s] on x-faces")                    \
+  X(v, "y velocity [m/s] on y-faces")
+#define BLASTSIM_CIP_FIELD_PARTS(X) X(double, f, "the value") X(double, gx, "its x derivative") X(double, gy, "its y derivative")
+//! The material fields at cell centres (GasMaterials), present only in a run with products.
+#define BLASTSIM_GAS_MATERIAL_FIELDS(X)                                         \
+  X(double, alpha, "volume fraction of the detonation products [-]")          \
+  X(double, m1, "partial density of the products alpha rho1 [kg/m3]")
+//! The immersed-boundary input of the gas solver (the paper's Fig. 1a), written by a coupler on the device:
+//! - cell_active(i, j) = 0 marks an inactive cell: CIP does not advance it and keeps whatever state the
+//!   coupler put there (the paper: ambient gas); active neighbours see it as a zero-gradient wall;
+//! - u_prescribed(i, j) = 1 imposes u_imposed(i, j) [m/s] on that x-face (likewise v on y-faces): the face
+//!   moves with the solid. Faces next to an inactive cell should be prescribed.
+#define BLASTSIM_GAS_IMMERSED_INPUT(X)                                     \
+  X(std::uint8_t, cell_active, "1: the cell is advanced, 0: inactive")    \
+  X(std::uint8_t, u_prescribed, "1: the x-face's velocity is imposed")    \
+  X(std::uint8_t, v_prescribed, "1: the y-face's velocity is imposed")    \
+  X(double, u_imposed, "the imposed velocity of a prescribed x-face [m/s]") \
+  X(double, v_imposed, "the imposed velocity of a prescribed y-face [m/s]")
 
-//! View of the whole gas state. rho [kg/m3] and e [J/kg] at cell centres, u [m/s] on x-faces,
-//! v [m/s] on y-faces, each with its derivatives (grid.hpp has the index conventions).
-template <class T>
-struct BasicGasStateView {
-  BasicCipFieldView<T> rho, e, u, v;
-  template <class U = T, class = std::enable_if_t<!std::is_const_v<U>>>
-  BLAST_HD operator BasicGasStateView<const U>() const {
-    return {rho, e, u, v};
-  }
-};
-using GasStateView = BasicGasStateView<double>;
-using GasStateReadView = BasicGasStateView<const double>;
+#define BLASTSIM_GAS_UNKNOWN_MEMBER(name, comment) CipField<A> name;
+#define BLASTSIM_GAS_UNKNOWN_COPY(name, comment) name,
 
-//! View of the material fields at cell centres (GasMaterials): the products' volume fraction alpha [-] and
-//! partial density m1 = alpha rho1 [kg/m3]. Both zero in a run without products.
-template <class T>
-struct BasicMaterialView {
-  Field2D<T> alpha, m1;
-  template <class U = T, class = std::enable_if_t<!std::is_const_v<U>>>
-  BLAST_HD operator BasicMaterialView<const U>() const {
-    return {alpha, m1};
-  }
+//! One CIP unknown: value and its x and y derivatives on the same padded shape.
+template <Access A>
+struct CipField {
+  BLASTSIM_CIP_FIELD_PARTS(BLASTSIM_FIELD_MEMBER)
+  BLASTSIM_READ_CONVERSION(CipField, BLASTSIM_CIP_FIELD_PARTS(BLASTSIM_MEMBER_NAME))
 };
-using MaterialView = BasicMaterialView<double>;
-using MaterialReadView = BasicMaterialView<const double>;
+//! The whole gas state: rho and e at cell centres, u on x-faces, v on y-faces, each with its derivatives.
+template <Access A>
+struct GasState {
+  BLASTSIM_GAS_UNKNOWNS(BLASTSIM_GAS_UNKNOWN_MEMBER)
+  BLASTSIM_READ_CONVERSION(GasState, BLASTSIM_GAS_UNKNOWNS(BLASTSIM_GAS_UNKNOWN_COPY))
+};
+//! The products' volume fraction alpha [-] and partial density m1 = alpha rho1 [kg/m3] (empty fields, never
+//! read, in a run without products).
+template <Access A>
+struct MaterialFields {
+  BLASTSIM_GAS_MATERIAL_FIELDS(BLASTSIM_FIELD_MEMBER)
+  BLASTSIM_READ_CONVERSION(MaterialFields, BLASTSIM_GAS_MATERIAL_FIELDS(BLASTSIM_MEMBER_NAME))
+};
+template <Access A>
+struct ImmersedBoundaryInput {
+  BLASTSIM_GAS_IMMERSED_INPUT(BLASTSIM_FIELD_MEMBER)
+  BLASTSIM_READ_CONVERSION(ImmersedBoundaryInput, BLASTSIM_GAS_IMMERSED_INPUT(BLASTSIM_MEMBER_NAME))
+};
+using CipFieldView = CipField<Access::read_write>;
+using CipFieldReadView = CipField<Access::read>;
+using GasStateView = GasState<Access::read_write>;
+using GasStateReadView = GasState<Access::read>;
+using MaterialView = MaterialFields<Access::read_write>;
+using MaterialReadView = MaterialFields<Access::read>;
+using ImmersedBoundaryView = ImmersedBoundaryInput<Access::read_write>;
+using ImmersedBoundaryReadView = ImmersedBoundaryInput<Access::read>;
 
 //! Pressure [Pa] of cell (i, j) from its density, energy and (two-material runs) material fields.
 BLAST_HD inline double cell_pressure(const GasMaterials& mat, const MaterialReadView& m, double rho, double e, int i,
@@ -70,17 +94,87 @@ BLAST_HD inline PressureSound cell_pressure_and_sound_speed(const GasMaterials& 
 }
 
 
-//! The immersed-boundary input of the gas solver (the paper's Fig. 1a), written by a coupler on the device:
-//! - cell_active(i, j) = 0 marks an inactive cell: CIP does not advance it and keeps whatever state the
-//!   coupler put there (the paper: ambient gas); active neighbours see it as a zero-gradient wall;
-//! - u_prescribed(i, j) = 1 imposes u_imposed(i, j) [m/s] on that x-face (likewise v on y-faces): the face
-//!   moves with the solid. Faces next to an inactive cell should be prescribed.
-struct ImmersedBoundaryView {
-  Field2D<std::uint8_t> cell_active;
-  Field2D<std::uint8_t> u_prescribed;
-  Field2D<std::uint8_t> v_prescribed;
-  Field2D<double> u_imposed;
-  Field2D<double> v_imposed;
+//! What a cell holds, as the coupling moves gas between cells, into them or out of them: per unit area of
+//! the cell [kg/m3, J/m3] when gathered from cells (GasCells::own(), add_share()), per unit thickness [kg/m,
+//! J/m] when deposited (GasCells::deposit()). The products' volume fraction travels as alpha x mass, so a
+//! mix of several contents takes their mass-weighted mean fraction.
+struct CellContent {
+  double mass;           //!< rho
+  double energy;         //!< rho e, and whatever kinetic energy the giver hands on
+  double products_mass;  //!< m1 = alpha rho1 (0 in a one-gas run)
+  double alpha_mass;     //!< alpha rho (0 in a one-gas run)
 };
+
+//! Which material fills a cell entirely (GasCells::fill()).
+enum class GasPhase { air, products };
+
+//! The cells of the gas state, with their material fields, as the coupling sees them: it takes, mixes,
+//! deposits and replaces what cells hold through these calls, which handle the material fields (present only
+//! in a run with products), so a coupling kernel never branches on the number of materials. Access read_write
+//! for a kernel that writes (GasCells), read for one that only reads (GasCellsRead).
+template <Access A>
+struct GasCellsOf {
+  GasState<A> s;
+  MaterialFields<A> m;  //!< empty in a one-gas run
+  bool two;             //!< GasMaterials::two
+  BLASTSIM_READ_CONVERSION(GasCellsOf, s BLASTSIM_COMMA m BLASTSIM_COMMA two)
+
+  //! What cell (i, j) holds per unit area, with `energy` [J/m3] as its energy (its internal energy, or more).
+  BLAST_HD CellContent own(int i, int j, double energy) const {
+    const double rho = s.rho.f(i, j);
+    return {rho, energy, two ? m.m1(i, j) : 0.0, two ? m.alpha(i, j) * rho : 0.0};
+  }
+  //! Adds `share` of cell (i, j)'s content to c, with `energy` [J/m3] as that cell's energy.
+  BLAST_HD void add_share(CellContent& c, double share, int i, int j, double energy) const {
+    c.mass += share * s.rho.f(i, j);
+    c.energy += share * energy;
+    if (two) {
+      c.products_mass += share * m.m1(i, j);
+      c.alpha_mass += share * m.alpha(i, j) * s.rho.f(i, j);
+    }
+  }
+  //! The products' volume fraction alpha and mass fraction Y of cell (i, j) (both 0 in a one-gas run).
+  struct Fractions {
+    double alpha, Y;
+  };
+  BLAST_HD Fractions fractions(int i, int j) const {
+    return two ? Fractions{m.alpha(i, j), m.m1(i, j) / s.rho.f(i, j)} : Fractions{0.0, 0.0};
+  }
+
+  // --- writes (GasCells only) ---
+  //! Makes cell (i, j) hold c (per unit area): its density, specific energy and fractions from c, its
+  //! derivatives zero.
+  BLAST_HD void replace(int i, int j, const CellContent& c) const {
+    s.rho.f(i, j) = c.mass, s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
+    s.e.f(i, j) = c.energy / c.mass, s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
+    if (two) m.alpha(i, j) = c.alpha_mass / c.mass, m.m1(i, j) = c.products_mass;
+  }
+  //! Adds `add` (per unit thickness: mass [kg/m], internal energy [J/m], products mass, alpha x mass) to cell
+  //! (i, j) of area `area` [m2]; its faces keep their velocities and its derivatives their values.
+  BLAST_HD void deposit(int i, int j, const CellContent& add, double area) const {
+    const double m_old = s.rho.f(i, j) * area, m_new = m_old + add.mass;
+    const double E_new = s.e.f(i, j) * m_old + add.energy;
+    s.rho.f(i, j) = m_new / area;
+    s.e.f(i, j) = E_new / m_new;
+    if (two) {
+      m.alpha(i, j) = (m.alpha(i, j) * m_old + add.alpha_mass) / m_new;
+      m.m1(i, j) += add.products_mass / area;
+    }
+  }
+  //! Fills cell (i, j) with one material at density rho [kg/m3] and specific internal energy e [J/kg], its
+  //! derivatives zero (GasPhase::products needs a run with products).
+  BLAST_HD void fill(int i, int j, GasPhase phase, double rho, double e) const {
+    s.rho.f(i, j) = rho, s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
+    s.e.f(i, j) = e, s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
+    if (two) {
+      const bool products = phase == GasPhase::products;
+      m.alpha(i, j) = products ? 1.0 : 0.0;
+      m.m1(i, j) = products ? rho : 0.0;
+    }
+  }
+};
+using GasCells = GasCellsOf<Access::read_write>;
+using GasCellsRead = GasCellsOf<Access::read>;
+
 
 }  // namespace blastsim::cip

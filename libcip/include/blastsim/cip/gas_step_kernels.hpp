@@ -18,8 +18,8 @@
 namespace blastsim::cip {
 
 
-template <class T>
-BLAST_HD inline CipPoint load_point(const BasicCipFieldView<T>& F, int i, int j) { return {F.f(i, j), F.gx(i, j), F.gy(i, j)}; }
+template <Access A>
+BLAST_HD inline CipPoint load_point(const CipField<A>& F, int i, int j) { return {F.f(i, j), F.gx(i, j), F.gy(i, j)}; }
 BLAST_HD inline void store_point(const CipFieldView& F, int i, int j, const CipPoint& p, bool derivatives_only = false) {
   if (!derivatives_only) F.f(i, j) = p.f;
   F.gx(i, j) = p.gx;
@@ -420,20 +420,28 @@ struct BoundaryFlowKernel {
   }
 };
 
-//! Adds dt times what crosses boundary face k (BoundaryFlowKernel) to that face's outflow-ledger entries
-//! (kOutflowLedgerWidth a face): one thread a face, so no atomics, and the ledger stays on the device.
+//! The outflow ledger: one record per boundary face (OutflowReference's order), checkpointed.
+#define BLASTSIM_GAS_OUTFLOW_LEDGER(X) X(OutflowLedger, face, "what left through each boundary face since initialise()")
+template <Access A>
+struct OutflowLedgers {
+  BLASTSIM_GAS_OUTFLOW_LEDGER(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(OutflowLedgers, BLASTSIM_GAS_OUTFLOW_LEDGER(BLASTSIM_MEMBER_NAME))
+};
+
+//! Adds dt times what crosses boundary face k (BoundaryFlowKernel) to that face's outflow-ledger record: one
+//! thread a face, so no atomics, and the ledger stays on the device.
 struct OutflowLedgerKernel {
   BoundaryFlowKernel flow;
-  double* ledger;
+  OutflowLedgers<Access::read_write> ledger;
   double dt;
   BLAST_HD void operator()(index_t k) const {
     const TotalsSum f = flow(k);
-    double* l = ledger + kOutflowLedgerWidth * k;
-    l[0] += dt * f.m;
-    l[1] += dt * f.mx;
-    l[2] += dt * f.my;
-    l[3] += dt * f.ei;
-    l[4] += dt * f.m1;
+    OutflowLedger& l = ledger.face[k];
+    l.mass += dt * f.m;
+    l.momentum_x += dt * f.mx;
+    l.momentum_y += dt * f.my;
+    l.energy += dt * f.ei;
+    l.products_mass += dt * f.m1;
   }
 };
 

@@ -110,8 +110,15 @@ struct BoundaryOutflow {
   double energy = 0;      //!< [J/m] internal + kinetic energy carried out, plus pressure work
   double products_mass = 0;  //!< [kg/m] of detonation products carried out
 };
-//! Entries a boundary face keeps in the solver's outflow ledger: mass, x- and y-momentum, energy, products mass.
-constexpr int kOutflowLedgerWidth = 5;
+//! What one boundary face let out since initialise() (the solver's outflow ledger, one record a face, summed
+//! into a BoundaryOutflow when asked), per unit depth.
+struct OutflowLedger {
+  double mass;           //!< [kg/m]
+  double momentum_x;     //!< [kg/s]
+  double momentum_y;     //!< [kg/s]
+  double energy;         //!< [J/m]
+  double products_mass;  //!< [kg/m]
+};
 
 //! Cell-centred copy of the state on the host (i fastest), for output.
 struct HostGasFields {

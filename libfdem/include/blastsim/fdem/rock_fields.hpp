@@ -12,6 +12,7 @@
 
 #include "blastsim/core/access.hpp"
 #include "blastsim/fdem/joint_kernels.hpp"
+#include "blastsim/fdem/rock_types.hpp"
 #include "blastsim/fdem/triangle_kernels.hpp"
 
 #include <cstdint>
@@ -97,6 +98,10 @@ struct PairLoad {
   X(Vec2, v_prescribed, "prescribed velocity [m/s]")                                               \
   X(Mat2, dashpot, "viscous-boundary coefficients C [N s/m2] (force -C v), read where bit 2 is set")
 
+#define BLASTSIM_ROCK_EDGE_LOADS(X)                                                                \
+  X(double, pressure, "pressure on the edge when exposed [Pa] (set_edge_pressure(), or a coupler each step)") \
+  X(Vec2, node_load, "load on the slot's first node (node 3 t + k) [N/m], written by a coupler each step")
+
 // ---- state: what evolves ----------------------------------------------------------------------------------
 #define BLASTSIM_ROCK_NODE_MOTION(X)    \
   X(double, x, "position x [m]")        \
@@ -118,9 +123,7 @@ struct PairLoad {
   X(TriangleDissipation, dissipation, "cumulative dissipation")
 #define BLASTSIM_ROCK_EDGE_STATE(X)                                                        \
   X(SlotForce, joint_force, "force of the joint across the slot on the slot's two nodes") \
-  X(std::uint8_t, exposed, "kEdgeInside, kEdgeBoundary or kEdgeCrackFace")                \
-  X(double, pressure, "pressure on the edge when exposed [Pa] (written by a coupler)")                      \
-  X(Vec2, node_load, "load on the slot's first node (node 3 t + k) written by a coupler [N/m]")
+  X(std::uint8_t, exposed, "kEdgeInside, kEdgeBoundary or kEdgeCrackFace")
 #define BLASTSIM_ROCK_JOINT_STATE(X)                                       \
   X(JointPointDamage, damage, "irreversible damage at the three points")   \
   X(JointPointValues, separation, "opening and slip at the three points [m]") \
@@ -160,10 +163,17 @@ struct NodeLoads {
   BLASTSIM_ROCK_NODE_LOADS(BLASTSIM_CONST_VIEW_MEMBER)
 };
 
+template <Access A>
+struct EdgeLoads {
+  BLASTSIM_ROCK_EDGE_LOADS(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(EdgeLoads, BLASTSIM_ROCK_EDGE_LOADS(BLASTSIM_MEMBER_NAME))
+};
+
 //! Views of the state, with the access the kernel needs.
 template <Access A>
 struct NodeMotion {
   BLASTSIM_ROCK_NODE_MOTION(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(NodeMotion, BLASTSIM_ROCK_NODE_MOTION(BLASTSIM_MEMBER_NAME))
   BLAST_HD Vec2 position(int n) const { return {x[n], y[n]}; }
   BLAST_HD Vec2 velocity(int n) const { return {vx[n], vy[n]}; }
   //! Positions of triangle t's nodes.
@@ -174,30 +184,53 @@ struct NodeMotion {
 template <Access A>
 struct NodeForces {
   BLASTSIM_ROCK_NODE_FORCES(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(NodeForces, BLASTSIM_ROCK_NODE_FORCES(BLASTSIM_MEMBER_NAME))
 };
 template <Access A>
 struct NodeLedger {
   BLASTSIM_ROCK_NODE_LEDGER(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(NodeLedger, BLASTSIM_ROCK_NODE_LEDGER(BLASTSIM_MEMBER_NAME))
 };
 template <Access A>
 struct TriangleState {
   BLASTSIM_ROCK_TRIANGLE_STATE(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(TriangleState, BLASTSIM_ROCK_TRIANGLE_STATE(BLASTSIM_MEMBER_NAME))
 };
 template <Access A>
 struct EdgeState {
   BLASTSIM_ROCK_EDGE_STATE(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(EdgeState, BLASTSIM_ROCK_EDGE_STATE(BLASTSIM_MEMBER_NAME))
 };
 template <Access A>
 struct JointState {
   BLASTSIM_ROCK_JOINT_STATE(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(JointState, BLASTSIM_ROCK_JOINT_STATE(BLASTSIM_MEMBER_NAME))
 };
 template <Access A>
 struct ContactGrid {
   BLASTSIM_ROCK_CONTACT_GRID(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(ContactGrid, BLASTSIM_ROCK_CONTACT_GRID(BLASTSIM_MEMBER_NAME))
 };
 template <Access A>
 struct ContactPairs {
   BLASTSIM_ROCK_CONTACT_PAIRS(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(ContactPairs, BLASTSIM_ROCK_CONTACT_PAIRS(BLASTSIM_MEMBER_NAME))
+};
+
+//! What a coupler reads of the rock (docs/coupling.md), built from the groups above: the nodes' motion, the
+//! edge slots' exposure and the joints, read-only (RockSolver::view() const).
+struct RockReadView {
+  NodeMotion<Access::read> nodes;
+  EdgeParams edge;                //!< per slot: the triangle and the joint across it
+  EdgeState<Access::read> edges;  //!< per slot: exposure (kEdgeInside, kEdgeBoundary, kEdgeCrackFace)
+  JointParams joint;              //!< per joint: its four nodes
+  JointState<Access::read> joints;  //!< per joint: broken flag, damage, opening
+  int triangle_count, joint_count;
+};
+//! What a coupler sees of the rock in a step (RockSolver::view()): the read view, and the edge loads it writes
+//! (pressures and node loads, which the rock's next step applies).
+struct RockView : RockReadView {
+  EdgeLoads<Access::read_write> loads;  //!< per slot: pressure [Pa]; node load [N/m] on its first node
 };
 
 //! The edge-slot rule (one place for it): slot 3 t + k of triangle t runs from node 3 t + k to the next

@@ -1,9 +1,9 @@
 //! \file rock_solver.hpp
 //! \brief The FDEM rock solver: explicit step of elastic triangles, cohesive joints, contact with friction.
 //!
-//! Device-array interface (what the gas coupling and other codes use, view()): node positions and velocities,
-//! one pressure per triangle edge (`edge_pressure`, applied only where `edge_exposed` is set: the mesh
-//! boundary and both faces of every broken joint). Edge slot 3 t + k of triangle t runs from node 3 t + k to
+//! Device-array interface (what the gas coupling and other codes use, view(): a RockView of rock_fields.hpp):
+//! node positions and velocities, one pressure per triangle edge (`loads.pressure`, applied only where
+//! `edges.exposed` is set: the mesh boundary and both faces of every broken joint). Edge slot 3 t + k of triangle t runs from node 3 t + k to
 //! node 3 t + (k + 1) % 3 (nodes counter-clockwise), so a slot index is also the index of its first node.
 //! Force assembly is a gather (every node sums its own contributions), so results are bitwise repeatable.
 //! The arrays live behind the class (rock_fields.hpp lists them), so this header needs no backend headers.
@@ -30,23 +30,6 @@ namespace blastsim::fdem {
 namespace detail {
 struct RockArrays;
 }
-
-//! Non-owning device views of the rock state, for coupling kernels: positions and velocities are read, the
-//! edge pressures written.
-struct RockView {
-  const double* x;
-  const double* y;
-  const double* vx;
-  const double* vy;
-  const std::uint8_t* edge_exposed;  //!< per edge slot: kEdgeInside, kEdgeBoundary or kEdgeCrackFace
-  double* edge_pressure;             //!< per edge slot [Pa], read by the next step
-  Vec2* node_load;                   //!< per node [N/m], read by the next step (a coupler's face forces)
-  int triangles;
-  const int* edge_joint;             //!< per edge slot: the joint across it, or -1
-  const JointNodes* joint_nodes;     //!< per joint: its four nodes
-  const std::uint8_t* joint_broken;  //!< per joint: 1 once broken
-  int joints;
-};
 
 class RockSolver {
  public:
@@ -105,10 +88,11 @@ class RockSolver {
 
   // --- device-array interface ---
   RockView view();
+  RockReadView view() const;  //!< the same without the loads, for queries
   //! Host copies of the edge pressures [Pa] and exposure flags, one per edge slot (for tests and output).
   std::vector<double> edge_pressures() const;
   std::vector<std::uint8_t> edge_exposure() const;
-  //! Host copy of the coupler's node loads [N/m] (RockView::node_load), one per node.
+  //! Host copy of the coupler's node loads [N/m] (RockView::loads.node_load), one per node.
   std::vector<Vec2> node_loads() const;
 
   // --- checkpoint and restart ---

@@ -90,7 +90,8 @@ struct NeighbourSearchKernel {
 struct TriangleForceKernel {
   NodeMotion<Access::read> nodes;
   TriangleParams params;
-  EdgeState<Access::read> edges;  //!< exposed, pressure
+  EdgeState<Access::read> edges;  //!< exposed
+  EdgeLoads<Access::read> loads;  //!< pressure, node_load
   NodeForces<Access::read_write> forces;  //!< writes triangle_* and pressure_*
   TriangleState<Access::read_write> state;
   double lambda, mu, pressure_scale, dt;
@@ -116,7 +117,7 @@ struct TriangleForceKernel {
     Vec2 fp[3] = {{0, 0}, {0, 0}, {0, 0}};
     for (int e = 0; e < 3; ++e) {
       const int s = 3 * t + e;
-      const double pe = edges.exposed[s] ? pressure_scale * edges.pressure[s] : 0.0;
+      const double pe = edges.exposed[s] ? pressure_scale * loads.pressure[s] : 0.0;
       if (pe == 0.0) continue;
       const int e1 = (e + 1) % 3;
       const Vec2 n = edge_outward_normal(p[e], p[e1]);
@@ -125,7 +126,7 @@ struct TriangleForceKernel {
       fp[e1] = {fp[e1].x + half.x, fp[e1].y + half.y};
     }
     for (int k = 0; k < 3; ++k) {
-      const Vec2 load = edges.node_load[3 * t + k];
+      const Vec2 load = loads.node_load[3 * t + k];
       forces.pressure_x[3 * t + k] = fp[k].x + load.x;
       forces.pressure_y[3 * t + k] = fp[k].y + load.y;
     }

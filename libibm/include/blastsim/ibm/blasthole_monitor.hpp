@@ -1,12 +1,15 @@
 //! \file blasthole_monitor.hpp
 //! \brief What a blast engineer watches around one blasthole in a coupled run: the gas pressure at the hole
 //! wall against the rock's radial stress there (the paper's Fig. 4b; docs/validation.md S1), the first crack,
-//! and the gas reaching the rock's outer free surface with its speed (the paper's 3.14 ms and 214 m/s).
+//! the gas reaching the rock's outer free surface with its speed (the paper's 3.14 ms and 214 m/s), and, with
+//! gas in the cracks, the hole's gas front in the crack network and its arrival at the outer surface.
 #pragma once
 
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/ibm/crack_gas_coupling.hpp"
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -31,6 +34,11 @@ struct BlastholeSample {
   double outer_pressure_max = 0;   //!< largest gas pressure on the circle just outside the outer surface
   double outer_speed_max = 0;      //!< largest outward speed among the outflow points there
   double outer_flux_speed = 0;     //!< mass-flux-weighted mean outward speed there
+  //! With crack gas: the largest crack-gas pressure at a crack mouth on the mesh outline beyond the middle
+  //! between the hole and the outer surface [Pa], and the hole's gas front in the cracks [m] (the farthest
+  //! crack whose own gas exceeds hole_gas_pressure()); 0 without.
+  double outer_crack_pressure = 0;
+  double crack_gas_front = 0;
 };
 
 //! The events, each the time of the first sample where it is seen (-1: not yet).
@@ -41,6 +49,8 @@ struct BlastholeEvents {
   double ejection_pressure = 0;   //!< [Pa] outer_pressure_max at that sample
   double jet_speed = 0;           //!< [m/s] largest outer_flux_speed from the ejection on
   double jet_time = -1;           //!< [s] when it was reached
+  double crack_arrival = -1;      //!< [s] the hole's gas at a crack mouth on the outer surface (crack gas)
+  double crack_arrival_pressure = 0;  //!< [Pa] the crack mouth's pressure then
 };
 
 //! Samples the gas and the rock around a blasthole and keeps the events.
@@ -52,8 +62,13 @@ class BlastholeMonitor {
   //! (at least 64). `ambient_pressure` [Pa] sets the ejection threshold (twice it).
   BlastholeMonitor(const BlastholeGeometry& geometry, const cip::GasGrid& grid, double ambient_pressure);
 
-  //! Takes one sample at the solvers' current state and updates the events.
-  BlastholeSample sample(const cip::GasSolver& gas, const fdem::RockSolver& rock);
+  //! Takes one sample at the solvers' current state and updates the events; `crack`: the coupling's crack gas,
+  //! when it has one.
+  BlastholeSample sample(const cip::GasSolver& gas, const fdem::RockSolver& rock, const CrackGasCoupling* crack = nullptr);
+  //! The pressure [Pa] above which crack gas counts as the hole's: a quarter of the gas pressure at the hole
+  //! wall `wall_pressure` [Pa], and at least twice the ambient (the outside air that dry cracks draw in through
+  //! the free face stays below it).
+  double hole_gas_pressure(double wall_pressure) const { return std::max(0.25 * wall_pressure, 2 * p_ambient_); }
 
   const BlastholeEvents& events() const { return events_; }
   void restore(const BlastholeEvents& e) { events_ = e; }  //!< a restart: the events of the checkpoint

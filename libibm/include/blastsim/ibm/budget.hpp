@@ -19,9 +19,9 @@ struct CoupledBudget {
   double immersed_face_work = 0;  //!< energy the rock's moving faces gave the gas (GasSolver::immersed_face_work)
   double positivity_energy = 0;   //!< energy the gas transport's positivity bound added (GasSolver::positivity_energy)
   double charge_energy = 0;       //!< detonation energy of the burnt charge cells less the gas they held (ChargeTotals)
-  //! (gas energy (grid and cracks) + gas out + rock kinetic + strain + joint work + contact work + damping) - (initial energy +
-  //! other external work + energy the cell transitions created + immersed-face work + positivity energy + charge
-  //! energy): zero for an exact budget.
+  //! (gas energy + the energy the coupling processes hold (the cracks' gas) + gas out + rock kinetic + strain +
+  //! joint work + contact work + damping) - (initial energy + other external work + the energy the processes
+  //! added (cell transitions, burnt charges) + immersed-face work + positivity energy): zero for an exact budget.
   double residual = 0;
 };
 

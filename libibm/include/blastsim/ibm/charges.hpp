@@ -1,46 +1,64 @@
 //! \file charges.hpp
-//! \brief Explosive charges in blastholes (docs/coupling.md "Charges"): plain types of the coupler's charge interface.
+//! \brief Explosive charges in blastholes as a coupling process (docs/coupling.md "Charges"): the cells whose
+//! centres lie in a charge's circle are its cells; until their lighting time (lighting_time()) they are a solid
+//! at rest that keeps its volume, then they burn: products at the explosive's density and detonation energy,
+//! the change recorded in a ledger (the energy budget).
 #pragma once
 
+#include "blastsim/ibm/charge_types.hpp"
+#include "blastsim/ibm/coupling_process.hpp"
+
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace blastsim::ibm {
 
-//! How the 2-D section of a charge detonates.
-enum class Initiation {
-  constant_volume,  //!< all of it at its initiation time (a column charge's section crossed by the front)
-  point             //!< a front from a point at the detonation velocity (programmed burn, lighting times)
-};
+namespace detail {
+struct ChargeArrays;
+}
 
-//! One charge: a circle of explosive in a blasthole of the rock. Before the grid cells of the charge burn, the
-//! charge is a solid that keeps its volume: its cells are inactive and their faces walls at rest, so no gas
-//! enters. A cell burns when the detonation front reaches its centre; it then holds the detonation products
-//! at the explosive's density and detonation energy, at rest (a constant-volume explosion of that cell).
-struct Charge {
-  std::array<double, 2> center{};  //!< [m] of the hole and the charge
-  double hole_radius = 0;          //!< [m] (for the borehole pressure: the cells within it)
-  double radius = 0;               //!< [m] of the charge, <= hole_radius (decoupled: the gap holds air)
-  double initiation_time = 0;      //!< [s]
-  Initiation initiation = Initiation::constant_volume;
-  std::array<double, 2> point{};   //!< [m] initiation point (Initiation::point)
-  double detonation_velocity = 0;  //!< [m/s] (Initiation::point)
-};
+//! A coupling process (coupling_process.hpp).
+class Charges : public CouplingProcess {
+ public:
+  //! Throws InputError: the gas has no products material, a charge larger than its hole or without a cell
+  //! centre inside it, two charges sharing a cell, a point initiation without a positive detonation velocity, a
+  //! bad products state.
+  Charges(const cip::GasSolver& gas, const std::vector<Charge>& charges, const ChargeProducts& products);
+  ~Charges() override;
+  const char* name() const override { return "charges"; }
 
-//! The state the products of every charge start from: the explosive's density and its detonation energy per
-//! unit mass (in the products' equation of state, so that rho0 e0 is the energy per unit volume E0).
-struct ChargeProducts {
-  double density = 0;          //!< rho0 [kg/m3]
-  double specific_energy = 0;  //!< e0 = E0 / rho0 [J/kg]
-};
+  const std::vector<Charge>& charges() const { return charges_; }
+  const ChargeProducts& products() const { return products_; }
 
-//! What the charges put into the gas so far, per unit thickness.
-struct ChargeTotals {
-  double products_mass = 0;    //!< [kg/m] of the burnt cells' products
-  double detonation_energy = 0;  //!< [J/m] their energy rho0 e0 A
-  double replaced_mass = 0;    //!< [kg/m] of the gas the burnt cells held before (the ambient state)
-  double replaced_energy = 0;  //!< [J/m] its internal energy
-  long burnt_cells = 0;
+  //! An unburnt charge's cells: every face point of theirs that no triangle covers becomes a wall at rest.
+  void cover(CouplingContext& ctx) override;
+  //! The charge cells lit since the last burn burn (from the second rock_to_gas() on: the first sets the run's
+  //! initial state, and the budget counts what burning adds).
+  void after_cells(CouplingContext& ctx) override;
+  //! A charge has cells lit by t that have not burnt.
+  bool due(double t) const override;
+  //! The earliest initiation time of a charge later than t [s]: a step lands on it, so that a charge fires at
+  //! its time and not up to a step later.
+  double next_event(double t) const override;
+
+  //! Per charge: the borehole pressure [Pa], the mean pressure of the active cells whose centres lie within its
+  //! hole radius (`ambient_pressure` when none is active).
+  std::vector<double> pressures(const cip::GasSolver& gas, double ambient_pressure) const;
+  //! Per charge: its detonation energy released so far [J/m] (rho0 e0 times the area of its burnt cells).
+  std::vector<double> energies(const cip::GasSolver& gas) const;
+
+  //! What the burnt cells put in; their energy less what the cells held is energy added (the budget).
+  void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
+  void write_checkpoint(CheckpointWriter& w) const override;
+  void read_checkpoint(CheckpointReader& r) override;
+
+ private:
+  std::vector<Charge> charges_;
+  ChargeProducts products_;
+  std::vector<std::array<double, 2>> window_;  // per charge: its first and last lighting time [s]
+  double burnt_until_;  // gas time of the last burn (every cell lit by then has burnt)
+  std::unique_ptr<detail::ChargeArrays> a_;
 };
 
 }  // namespace blastsim::ibm

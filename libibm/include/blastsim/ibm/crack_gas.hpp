@@ -2,7 +2,8 @@
 //! \brief CrackGas: compressible gas in a network of channels narrower than a grid cell (the broken joints of
 //! the rock), a 1-D finite-volume Euler solver on the crack graph with wall friction and choked mouths
 //! (docs/coupling.md "Gas in the cracks"). Usable alone (tests build a straight channel) or through
-//! GasRockCoupler, which sets its geometry from the rock and its mouths from the grid each step.
+//! CrackGasCoupling (a process of GasRockCoupler), which sets its geometry from the rock and its mouths from
+//! the grid each step.
 #pragma once
 
 #include "blastsim/cip/eos.hpp"
@@ -19,7 +20,7 @@ class CheckpointReader;
 
 namespace blastsim::ibm {
 
-//! Parameters of the crack gas model (input section [coupling.crack_gas], docs/input.md).
+//! Parameters of the crack gas model (input section [crack_gas], docs/input.md).
 struct CrackGasOptions {
   double residual_aperture = 1e-5;  //!< [m] aperture of a closed crack (its gas volume is L x this)
   double friction_factor = 0.1;     //!< rough-wall Darcy friction factor [-]
@@ -77,17 +78,15 @@ class CrackGas {
   //! Recomputes the segments' primitive states (pressures for the faces' loads) from their gas.
   void update_primitives();
 
-  // --- device views (GasRockCoupler's kernels) ---
-  CrackNetworkView network();
-  CrackGraphView graph() const;
-  //! Writable geometry and mouth arrays: length, aperture per segment; mouth flag and reservoir per junction.
-  struct Boundary {
-    double* length;
-    double* aperture;
-    std::uint8_t* mouth;
-    ChannelPrimitive* reservoir;
-  };
-  Boundary boundary();
+  // --- device views (the coupling's kernels: crack_coupling_kernels.hpp) ---
+  CrackGraph graph() const;
+  CrackGeometry<Access::read_write> geometry();  //!< length and aperture, set from the rock each step
+  CrackGeometry<Access::read> geometry() const;
+  CrackSegments<Access::read_write> segments();  //!< kind, gas, volume, primitives
+  CrackSegments<Access::read> segments() const;
+  CrackMouths<Access::read_write> mouths();      //!< which junctions open into a reservoir, and its state
+  CrackMouths<Access::read> mouths() const;
+  CrackDeposits<Access::read> deposit_view() const;  //!< what the mouths gave their reservoirs in this step
 
   // --- results (host copies) ---
   CrackGasTotals totals(double reference_pressure = 0) const;
@@ -103,13 +102,14 @@ class CrackGas {
   void write_checkpoint(CheckpointWriter& w) const;
   void read_checkpoint(CheckpointReader& r);
 
-  int segments() const { return segments_; }
-  int junctions() const { return junctions_; }
+  int segment_count() const { return segments_; }
+  int junction_count() const { return junctions_; }
   const cip::GasMaterials& materials() const { return mat_; }
   const CrackGasOptions& options() const { return options_; }
 
  private:
   void step_from_primitives(double dt);  //!< step() once the primitives are current
+  void check_kinds(const CheckpointReader& r) const;  //!< every restored kind is a CrackSegmentKind
   int segments_ = 0, junctions_ = 0;
   cip::GasMaterials mat_;
   CrackGasOptions options_;

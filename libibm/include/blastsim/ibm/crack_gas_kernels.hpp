@@ -12,6 +12,7 @@
 #pragma once
 
 #include "blastsim/cip/eos.hpp"
+#include "blastsim/core/access.hpp"
 #include "blastsim/core/field2d.hpp"
 #include "blastsim/core/macros.hpp"
 
@@ -57,21 +58,6 @@ struct ChannelFlux {
 
 BLAST_HD inline bool is_vacuum(const ChannelPrimitive& s) { return !(s.rho > kCrackVacuumDensity); }
 
-//! Effective Gruneisen coefficient of the mixture, 1 / (alpha / Gamma1 + (1 - alpha) / Gamma2).
-BLAST_HD inline double mixture_gruneisen(const cip::GasMaterials& mat, double alpha) {
-  if (!mat.two) return mat.air.gruneisen();
-  return 1.0 / (alpha / mat.products.gruneisen() + (1.0 - alpha) / mat.air.gruneisen());
-}
-
-//! Internal energy per volume rho e [J/m3] at density rho, pressure p, volume fraction alpha and products mass
-//! fraction Y (the inverse of the mixture's equation of state).
-BLAST_HD inline double channel_internal_energy(const cip::GasMaterials& mat, double rho, double p, double alpha, double Y) {
-  if (!mat.two || !(alpha > cip::GasMaterials::kMinFraction)) return rho * mat.air.internal_energy(rho, p);
-  const double a2 = 1.0 - alpha;
-  const double rho1 = Y * rho / alpha, rho2 = a2 > cip::GasMaterials::kMinFraction ? (1.0 - Y) * rho / a2 : 0.0;
-  return mat.energy_density(p, alpha, rho1, rho2);
-}
-
 //! Primitive state from density, velocity, specific internal energy and the products fractions.
 BLAST_HD inline ChannelPrimitive channel_state(const cip::GasMaterials& mat, double rho, double u, double e, double Y,
                                                double alpha) {
@@ -111,7 +97,7 @@ BLAST_HD inline ChannelFlux hllc_flux(const cip::GasMaterials& mat, const Channe
   if (vl && vr) return {0, 0, 0, 0, 0};
   if (vl || vr) {
     const ChannelPrimitive& g = vl ? R : L;
-    const double front = 2.0 * g.c / mixture_gruneisen(mat, g.alpha);
+    const double front = 2.0 * g.c / mat.mixture_gruneisen(g.alpha);
     const double SL = vl ? g.u - front : g.u - g.c, SR = vl ? g.u + g.c : g.u + front;
     const ChannelFlux F = physical_flux(g);
     if (vr ? SL >= 0 : SR <= 0) return F;
@@ -181,35 +167,74 @@ BLAST_HD inline double minmod(double a, double b) {
 //! A state from density, velocity, pressure and the products fractions (the MUSCL-Hancock face values).
 BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat, double rho, double u, double p, double Y,
                                                    double alpha) {
-  const double rho_e = channel_internal_energy(mat, rho, p, alpha, Y);
+  const double rho_e = mat.internal_energy_density(rho, p, alpha, Y);
   return channel_state(mat, rho, u, rho_e / rho, Y, alpha);
 }
 
 // ---- the crack graph and its kernels (CrackGas runs them; docs/coupling.md "Gas in the cracks") ----------
 
-//! The graph: segment s has ends 2 s (end 0) and 2 s + 1 (end 1) at junctions segment_junction[2 s + e];
-//! junction J lists its ends in junction_entry[junction_offset[J] .. junction_offset[J + 1]) (ascending).
-struct CrackGraphView {
-  const int* segment_junction;
-  const int* junction_offset;
-  const int* junction_entry;
-  int segments, junctions;
-};
+//! The network's arrays (CrackGas holds them, crack_gas.cpp), as field lists X(element type, name, comment)
+//! from which the views below and the storage come (core/access.hpp, core/device_groups.hpp). The graph:
+//! segment s has ends 2 s (end 0) and 2 s + 1 (end 1) at junctions segment_junction[2 s + e]; junction J lists
+//! its ends in junction_entry[junction_offset[J] .. junction_offset[J + 1]) (ascending).
+#define BLASTSIM_CRACK_GRAPH(X)                                                   \
+  X(int, segment_junction, "per end: its junction")                              \
+  X(int, junction_offset, "per junction (+1): start of its entries")             \
+  X(int, junction_entry, "the ends at each junction, ascending")
+//! Per segment, set from the rock every step (or by CrackGas::set_geometry()).
+#define BLASTSIM_CRACK_GEOMETRY(X)          \
+  X(double, length, "length L [m]")          \
+  X(double, aperture, "aperture w [m]")
+//! Per segment: what evolves.
+#define BLASTSIM_CRACK_SEGMENTS(X)                                                     \
+  X(std::uint8_t, kind, "CrackSegmentKind")                                            \
+  X(ChannelConserved, cons, "its gas, per unit thickness")                             \
+  X(double, volume, "the volume [m2 per m] cons refers to")                            \
+  X(ChannelPrimitive, prim, "state of the last primitive pass")
+//! Per end (2 a segment), the step's work arrays: the states at the ends, then the fluxes through them.
+#define BLASTSIM_CRACK_END_STATES(X) X(ChannelPrimitive, face, "the MUSCL-Hancock state at the end, segment frame")
+#define BLASTSIM_CRACK_END_FLUXES(X)                                                   \
+  X(ChannelFlux, out, "outflow rates x flux area [per m of thickness]")               \
+  X(double, end_area, "total flux area [m]")
+//! Per junction, set by the coupling every step (or by CrackGas::set_reservoirs()): the mouths.
+#define BLASTSIM_CRACK_MOUTHS(X)                                                       \
+  X(std::uint8_t, open, "1: opens into a gas reservoir (a grid cell)")                 \
+  X(ChannelPrimitive, reservoir, "the reservoir's state (at rest)")
+//! Per junction: what went into its reservoir since the last clear (mass, energy, products).
+#define BLASTSIM_CRACK_DEPOSITS(X) X(ChannelConserved, deposit, "m, E, m1, am [per m of thickness]")
 
-//! Per-step arrays of the network: geometry, kind, state, and the work arrays of a step.
-struct CrackNetworkView {
-  const double* length;          //!< per segment [m]
-  const double* aperture;        //!< per segment [m]
-  std::uint8_t* kind;            //!< per segment: CrackSegmentKind
-  ChannelConserved* cons;        //!< per segment
-  double* volume;                //!< per segment: the volume [m2 per m] cons refers to
-  ChannelPrimitive* prim;        //!< per segment: state of the last primitive pass
-  ChannelPrimitive* face;        //!< per end: the MUSCL-Hancock state at the end, segment frame
-  ChannelFlux* out;              //!< per end: outflow rates x flux area [per m of thickness]
-  double* end_area;              //!< per end: total flux area [m]
-  const std::uint8_t* mouth;     //!< per junction: opens into a gas reservoir (a grid cell)
-  const ChannelPrimitive* reservoir;  //!< per junction: the reservoir's state (at rest)
-  ChannelConserved* deposit;     //!< per junction: what went into the reservoir so far (m, E, m1, am)
+struct CrackGraph {
+  BLASTSIM_CRACK_GRAPH(BLASTSIM_CONST_VIEW_MEMBER)
+};
+template <Access A>
+struct CrackGeometry {
+  BLASTSIM_CRACK_GEOMETRY(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(CrackGeometry, BLASTSIM_CRACK_GEOMETRY(BLASTSIM_MEMBER_NAME))
+};
+template <Access A>
+struct CrackSegments {
+  BLASTSIM_CRACK_SEGMENTS(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(CrackSegments, BLASTSIM_CRACK_SEGMENTS(BLASTSIM_MEMBER_NAME))
+};
+template <Access A>
+struct CrackEndStates {
+  BLASTSIM_CRACK_END_STATES(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(CrackEndStates, BLASTSIM_CRACK_END_STATES(BLASTSIM_MEMBER_NAME))
+};
+template <Access A>
+struct CrackEndFluxes {
+  BLASTSIM_CRACK_END_FLUXES(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(CrackEndFluxes, BLASTSIM_CRACK_END_FLUXES(BLASTSIM_MEMBER_NAME))
+};
+template <Access A>
+struct CrackMouths {
+  BLASTSIM_CRACK_MOUTHS(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(CrackMouths, BLASTSIM_CRACK_MOUTHS(BLASTSIM_MEMBER_NAME))
+};
+template <Access A>
+struct CrackDeposits {
+  BLASTSIM_CRACK_DEPOSITS(BLASTSIM_VIEW_MEMBER)
+  BLASTSIM_READ_CONVERSION(CrackDeposits, BLASTSIM_CRACK_DEPOSITS(BLASTSIM_MEMBER_NAME))
 };
 
 //! The physical parameters of the channel flow (CrackGasOptions' kernel part).
@@ -221,22 +246,24 @@ struct ChannelFlowParams {
 //! Primitive state of every segment that holds gas.
 struct SegmentPrimitiveKernel {
   cip::GasMaterials mat;
-  CrackNetworkView n;
+  CrackSegments<Access::read_write> seg;  //!< writes prim
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    n.prim[s] = n.kind[s] == kSegmentGas ? segment_state(mat, n.cons[s], n.volume[s]) : ChannelPrimitive{0, 0, 0, 0, 0, 0, 0};
+    seg.prim[s] = seg.kind[s] == kSegmentGas ? segment_state(mat, seg.cons[s], seg.volume[s])
+                                             : ChannelPrimitive{0, 0, 0, 0, 0, 0, 0};
   }
 };
 
 //! The one segment across end e of segment s when their junction joins exactly two gas segments and is no
 //! mouth (a straight-through chain); -1 otherwise. `other_end` receives the neighbour's end at the junction.
-BLAST_HD inline int chain_neighbour(const CrackGraphView& g, const CrackNetworkView& n, int s, int e, int& other_end) {
+BLAST_HD inline int chain_neighbour(const CrackGraph& g, const CrackMouths<Access::read>& mouths,
+                                    const CrackSegments<Access::read>& seg, int s, int e, int& other_end) {
   const int J = g.segment_junction[2 * s + e];
-  if (n.mouth[J]) return -1;
+  if (mouths.open[J]) return -1;
   int found = -1, count = 0;
   for (int k = g.junction_offset[J]; k < g.junction_offset[J + 1]; ++k) {
     const int entry = g.junction_entry[k], o = entry / 2;
-    if (o == s || n.kind[o] != kSegmentGas) continue;
+    if (o == s || seg.kind[o] != kSegmentGas) continue;
     ++count;
     found = entry;
   }
@@ -250,23 +277,26 @@ BLAST_HD inline int chain_neighbour(const CrackGraphView& g, const CrackNetworkV
 //! neighbour on one side or a reconstructed value is not positive).
 struct FaceStateKernel {
   cip::GasMaterials mat;
-  CrackGraphView g;
-  CrackNetworkView n;
+  CrackGraph g;
+  CrackGeometry<Access::read> geo;
+  CrackSegments<Access::read> seg;
+  CrackMouths<Access::read> mouths;
+  CrackEndStates<Access::read_write> ends;
   bool second_order;
   double dt;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    if (n.kind[s] != kSegmentGas) return;
-    const ChannelPrimitive P = n.prim[s];
-    n.face[2 * s] = P, n.face[2 * s + 1] = P;
+    if (seg.kind[s] != kSegmentGas) return;
+    const ChannelPrimitive P = seg.prim[s];
+    ends.face[2 * s] = P, ends.face[2 * s + 1] = P;
     if (!second_order || is_vacuum(P)) return;
     int eo0 = 0, eo1 = 0;
-    const int o0 = chain_neighbour(g, n, s, 0, eo0), o1 = chain_neighbour(g, n, s, 1, eo1);
+    const int o0 = chain_neighbour(g, mouths, seg, s, 0, eo0), o1 = chain_neighbour(g, mouths, seg, s, 1, eo1);
     if (o0 < 0 || o1 < 0) return;
-    const ChannelPrimitive Q0 = n.prim[o0], Q1 = n.prim[o1];
+    const ChannelPrimitive Q0 = seg.prim[o0], Q1 = seg.prim[o1];
     if (is_vacuum(Q0) || is_vacuum(Q1)) return;
-    const double L = n.length[s];
-    const double d0 = 0.5 * (L + n.length[o0]), d1 = 0.5 * (L + n.length[o1]);
+    const double L = geo.length[s];
+    const double d0 = 0.5 * (L + geo.length[o0]), d1 = 0.5 * (L + geo.length[o1]);
     // Neighbour velocities in this segment's frame: reversed when the two axes meet head to head or tail to tail.
     const double u0 = eo0 == 0 ? -Q0.u : Q0.u, u1 = eo1 == 1 ? -Q1.u : Q1.u;
     const double rx = minmod((P.rho - Q0.rho) / d0, (Q1.rho - P.rho) / d1);
@@ -281,10 +311,10 @@ struct FaceStateKernel {
     const double r0 = P.rho - 0.5 * L * rx + h * rt, r1 = P.rho + 0.5 * L * rx + h * rt;
     const double p0 = P.p - 0.5 * L * px + h * pt, p1 = P.p + 0.5 * L * px + h * pt;
     if (!(r0 > kCrackVacuumDensity && r1 > kCrackVacuumDensity && p0 > 0 && p1 > 0)) return;
-    n.face[2 * s] = channel_state_rup(mat, r0, P.u - 0.5 * L * ux + h * ut, p0, P.Y - 0.5 * L * Yx + h * Yt,
-                                      P.alpha - 0.5 * L * ax + h * at);
-    n.face[2 * s + 1] = channel_state_rup(mat, r1, P.u + 0.5 * L * ux + h * ut, p1, P.Y + 0.5 * L * Yx + h * Yt,
-                                          P.alpha + 0.5 * L * ax + h * at);
+    ends.face[2 * s] = channel_state_rup(mat, r0, P.u - 0.5 * L * ux + h * ut, p0, P.Y - 0.5 * L * Yx + h * Yt,
+                                         P.alpha - 0.5 * L * ax + h * at);
+    ends.face[2 * s + 1] = channel_state_rup(mat, r1, P.u + 0.5 * L * ux + h * ut, p1, P.Y + 0.5 * L * Yx + h * Yt,
+                                             P.alpha + 0.5 * L * ax + h * at);
   }
 };
 
@@ -301,27 +331,32 @@ BLAST_HD inline ChannelFlux scaled(const ChannelFlux& f, double a) { return {f.m
 //!   the smaller aperture), computed once per pair and given to both with opposite signs (exact conservation).
 struct JunctionFluxKernel {
   cip::GasMaterials mat;
-  CrackGraphView g;
-  CrackNetworkView n;
+  CrackGraph g;
+  CrackGeometry<Access::read> geo;
+  CrackSegments<Access::read> seg;
+  CrackMouths<Access::read> mouths;
+  CrackEndStates<Access::read> faces;
+  CrackEndFluxes<Access::read_write> fluxes;
+  CrackDeposits<Access::read_write> deposits;
   double dt;
   BLAST_HD void operator()(index_t ji) const {
     const int J = static_cast<int>(ji);
     int ends[kCrackMaxDegree];
     int k = 0;
     for (int e = g.junction_offset[J]; e < g.junction_offset[J + 1]; ++e)
-      if (n.kind[g.junction_entry[e] / 2] == kSegmentGas) ends[k++] = g.junction_entry[e];
+      if (seg.kind[g.junction_entry[e] / 2] == kSegmentGas) ends[k++] = g.junction_entry[e];
     if (k == 0) return;
     // State at each end in the frame pointing into the junction.
     auto inward = [&](int end) {
-      const ChannelPrimitive f = n.face[end];
+      const ChannelPrimitive f = faces.face[end];
       return end % 2 == 1 ? f : reversed(f);
     };
-    if (n.mouth[J]) {
-      const ChannelPrimitive r = n.reservoir[J];
-      ChannelConserved dep = n.deposit[J];
+    if (mouths.open[J]) {
+      const ChannelPrimitive r = mouths.reservoir[J];
+      ChannelConserved dep = deposits.deposit[J];
       for (int a = 0; a < k; ++a) {
         const int end = ends[a];
-        const double w = n.aperture[end / 2];
+        const double w = geo.aperture[end / 2];
         const ChannelPrimitive s = inward(end);
         ChannelFlux o{0, 0, 0, 0, 0};
         if (r.p > s.p) {  // into the crack from the reservoir at rest
@@ -337,17 +372,17 @@ struct JunctionFluxKernel {
         } else {
           o = {0, s.p * w, 0, 0, 0};
         }
-        n.out[end] = o;
-        n.end_area[end] = w;
+        fluxes.out[end] = o;
+        fluxes.end_area[end] = w;
         dep.m += dt * o.m, dep.E += dt * o.E, dep.m1 += dt * o.m1, dep.am += dt * o.am;
       }
-      n.deposit[J] = dep;
+      deposits.deposit[J] = dep;
       return;
     }
     if (k == 1) {
-      const double w = n.aperture[ends[0] / 2];
-      n.out[ends[0]] = {0, wall_pressure(mat, inward(ends[0])) * w, 0, 0, 0};
-      n.end_area[ends[0]] = w;
+      const double w = geo.aperture[ends[0] / 2];
+      fluxes.out[ends[0]] = {0, wall_pressure(mat, inward(ends[0])) * w, 0, 0, 0};
+      fluxes.end_area[ends[0]] = w;
       return;
     }
     ChannelFlux acc[kCrackMaxDegree];
@@ -355,13 +390,13 @@ struct JunctionFluxKernel {
     for (int a = 0; a < k; ++a) acc[a] = {0, 0, 0, 0, 0}, area[a] = 0;
     for (int a = 0; a < k; ++a)
       for (int b = a + 1; b < k; ++b) {
-        const double A = fmin(n.aperture[ends[a] / 2], n.aperture[ends[b] / 2]) / (k - 1);
+        const double A = fmin(geo.aperture[ends[a] / 2], geo.aperture[ends[b] / 2]) / (k - 1);
         const ChannelFlux F = scaled(hllc_flux(mat, inward(ends[a]), reversed(inward(ends[b]))), A);
         acc[a] = {acc[a].m + F.m, acc[a].q + F.q, acc[a].E + F.E, acc[a].m1 + F.m1, acc[a].am + F.am};
         acc[b] = {acc[b].m - F.m, acc[b].q + F.q, acc[b].E - F.E, acc[b].m1 - F.m1, acc[b].am - F.am};
         area[a] += A, area[b] += A;
       }
-    for (int a = 0; a < k; ++a) n.out[ends[a]] = acc[a], n.end_area[ends[a]] = area[a];
+    for (int a = 0; a < k; ++a) fluxes.out[ends[a]] = acc[a], fluxes.end_area[ends[a]] = area[a];
   }
 };
 
@@ -370,27 +405,29 @@ struct JunctionFluxKernel {
 //! the wall friction, implicit (q / (1 + dt k), friction_rate()); friction turns kinetic energy into heat, so
 //! E does not change.
 struct SegmentUpdateKernel {
-  CrackNetworkView n;
+  CrackGeometry<Access::read> geo;
+  CrackSegments<Access::read_write> seg;  //!< writes cons
+  CrackEndFluxes<Access::read> ends;
   ChannelFlowParams flow;
   double dt;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    if (n.kind[s] != kSegmentGas) return;
-    const ChannelFlux o0 = n.out[2 * s], o1 = n.out[2 * s + 1];
-    ChannelConserved c = n.cons[s];
+    if (seg.kind[s] != kSegmentGas) return;
+    const ChannelFlux o0 = ends.out[2 * s], o1 = ends.out[2 * s + 1];
+    ChannelConserved c = seg.cons[s];
     c.m -= dt * (o0.m + o1.m);
     c.E -= dt * (o0.E + o1.E);
     c.m1 -= dt * (o0.m1 + o1.m1);
     c.am -= dt * (o0.am + o1.am);
-    c.q -= dt * (o1.q - o0.q - n.prim[s].p * (n.end_area[2 * s + 1] - n.end_area[2 * s]));
-    const double V = n.volume[s];
+    c.q -= dt * (o1.q - o0.q - seg.prim[s].p * (ends.end_area[2 * s + 1] - ends.end_area[2 * s]));
+    const double V = seg.volume[s];
     if (c.m > kCrackVacuumDensity * V) {
-      const double k = friction_rate(c.m / V, c.q / c.m, n.aperture[s], flow.friction_factor, flow.viscosity);
+      const double k = friction_rate(c.m / V, c.q / c.m, geo.aperture[s], flow.friction_factor, flow.viscosity);
       c.q /= 1.0 + dt * k;
     } else {
       c.q = 0.0;  // vacuum holds no momentum
     }
-    n.cons[s] = c;
+    seg.cons[s] = c;
   }
 };
 
@@ -398,14 +435,15 @@ struct SegmentUpdateKernel {
 //! front of a rarefaction runs at u + 2 c / Gamma).
 struct SegmentRateOf {
   cip::GasMaterials mat;
-  CrackNetworkView n;
+  CrackGeometry<Access::read> geo;
+  CrackSegments<Access::read> seg;
   BLAST_HD double operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    if (n.kind[s] != kSegmentGas) return 0.0;
-    const ChannelPrimitive P = n.prim[s];
+    if (seg.kind[s] != kSegmentGas) return 0.0;
+    const ChannelPrimitive P = seg.prim[s];
     if (is_vacuum(P)) return 0.0;
-    const double G = mixture_gruneisen(mat, P.alpha);
-    return (fabs(P.u) + P.c * fmax(1.0, 2.0 / G)) / n.length[s];
+    const double G = mat.mixture_gruneisen(P.alpha);
+    return (fabs(P.u) + P.c * fmax(1.0, 2.0 / G)) / geo.length[s];
   }
 };
 
