@@ -2,18 +2,21 @@
 //! \brief A coupled gas-rock case of the driver: the coupled stepper (libibm's GasRockCoupler and its dt
 //! policy) and its outputs (the gas's and the rock's files, coupling_series.csv with the energy budget, the
 //! blasthole monitor's files, the checkpoint) in the run loop.
-#include "coupled_run.hpp"
+#include "run_loop.hpp"
 
 #include "blastsim/core/error.hpp"
 #include "blastsim/ibm/blasthole_monitor.hpp"
 #include "blastsim/ibm/budget.hpp"
 #include "blastsim/ibm/coupler.hpp"
 #include "gas_outputs.hpp"
-#include "run_loop.hpp"
+#include "vtk_gas_writer.hpp"
 #include "rock_outputs.hpp"
+
+#include <fmt/format.h>
 
 #include <cmath>
 #include <optional>
+#include <set>
 #include <vector>
 
 namespace blastsim::app {
@@ -23,10 +26,10 @@ namespace {
 //! coupling_series.csv: the interface terms and the budget of gas + rock, and the gas in the monitor regions.
 class CouplingSeries {
  public:
-  CouplingSeries(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler,
+  CouplingSeries(const Case& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler,
                  bool resume)
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler),
-        file_((make_output_dir(c.gas.output_directory) / "coupling_series.csv").string(), header(c), resume),
+        file_((make_output_dir(c.output.directory) / "coupling_series.csv").string(), header(c), resume),
         initial_(ibm::initial_energy(gas, rock)) {}
   void write_checkpoint(CheckpointWriter& w) {
     w.value("out.coupling.initial", initial_);
@@ -54,8 +57,8 @@ class CouplingSeries {
                          e.crack_length, d.transitions.covered, d.transitions.uncovered, b.immersed_face_work,
                          d.crack.mass, d.crack.energy, d.crack.gas_segments, d.crack.wet_segments, d.crack.max_pressure);
     row += fmt::format(",{:.9e}", d.charges.detonation_energy);
-    for (const MonitorRegion& r : c_.regions) {
-      const cip::GasTotals t = coupler_.gas_in(r.region);
+    for (const MonitorSettings::Region& r : c_.monitor.regions) {
+      const cip::GasTotals t = coupler_.gas_in(r.where);
       row += fmt::format(",{:.9e},{:.9e}", t.mass, t.total_energy());
     }
     file_.row(row);
@@ -63,14 +66,14 @@ class CouplingSeries {
   }
 
  private:
-  const CoupledCaseConfig& c_;
+  const Case& c_;
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   ibm::GasRockCoupler& coupler_;
   CsvSeries file_;
   double initial_ = 0;
 
-  static std::string header(const CoupledCaseConfig& c) {
+  static std::string header(const Case& c) {
     std::string h = "step,time_s,gas_mass_kg_per_m,gas_internal_J_per_m,gas_kinetic_J_per_m,gas_energy_out_J_per_m,"
                     "rock_kinetic_J_per_m,rock_strain_J_per_m,joint_work_J_per_m,fracture_dissipated_J_per_m,"
                     "contact_work_J_per_m,damping_dissipated_J_per_m,gas_work_on_rock_J_per_m,other_external_work_J_per_m,"
@@ -78,7 +81,7 @@ class CouplingSeries {
                     "gas_force_y_N_per_m,broken_joints,crack_length_m,cells_covered,cells_uncovered,"
                     "immersed_face_work_J_per_m,crack_gas_mass_kg_per_m,crack_gas_energy_J_per_m,crack_gas_segments,"
                     "crack_wet_segments,crack_gas_pressure_max_Pa,charge_detonation_energy_J_per_m";
-    for (const MonitorRegion& r : c.regions) h += fmt::format(",{0}_mass_kg_per_m,{0}_energy_J_per_m", r.name);
+    for (const MonitorSettings::Region& r : c.monitor.regions) h += fmt::format(",{0}_mass_kg_per_m,{0}_energy_J_per_m", r.name);
     return h;
   }
 };
@@ -87,17 +90,17 @@ class CouplingSeries {
 //! monitor.blasthole.interval, and summary.txt with the events the paper reports.
 class BlastholeFiles {
  public:
-  BlastholeFiles(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock,
+  BlastholeFiles(const Case& c, cip::GasSolver& gas, fdem::RockSolver& rock,
                  const ibm::GasRockCoupler& coupler, bool resume)
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler) {
-    if (!c.blasthole) return;
-    monitor_.emplace(c.blasthole->geometry, c.gas.grid, c.gas.eos.pressure(c.gas.ambient.density, c.gas.ambient.internal_energy));
-    file_.emplace((make_output_dir(c.gas.output_directory) / "wall_series.csv").string(), wall_header(), resume);
+    if (!c.monitor.blasthole) return;
+    monitor_.emplace(c.monitor.blasthole->geometry, c.gas.grid, c.gas.ambient_pressure());
+    file_.emplace((make_output_dir(c.output.directory) / "wall_series.csv").string(), wall_header(), resume);
   }
 
   void sample() {
-    if (!monitor_ || gas_.time() < next_ - 1e-12 * c_.gas.end_time) return;
-    advance_schedule(next_, c_.blasthole->interval, gas_.time() + 1e-12 * c_.gas.end_time);
+    if (!monitor_ || gas_.time() < next_ - 1e-12 * c_.time.end) return;
+    advance_schedule(next_, c_.monitor.blasthole->interval, gas_.time() + 1e-12 * c_.time.end);
     const ibm::BlastholeSample s = monitor_->sample(gas_, rock_, coupler_.crack_gas());
     const double crack_outer = s.outer_crack_pressure, front = s.crack_gas_front;
     file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
@@ -109,7 +112,7 @@ class BlastholeFiles {
   //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
   //! analysis, RockOutputs::summary()). Without a blasthole monitor, the analysis alone.
   void write_summary(const fdem::RockEnergies& e, const std::string& analysis) const {
-    const std::string path = (std::filesystem::path(c_.gas.output_directory) / "summary.txt").string();
+    const std::string path = (std::filesystem::path(c_.output.directory) / "summary.txt").string();
     if (!monitor_) {
       if (!analysis.empty())
         write_atomically(path, [&](std::ostream& out) {
@@ -122,7 +125,7 @@ class BlastholeFiles {
     write_atomically(path, [&](std::ostream& out) {
       out << fmt::format("blastsim single-hole summary at t = {:.4e} s (step {})\n\n", gas_.time(), gas_.steps());
       out << fmt::format("first crack: {}\n  the first sample (every {:g} s) with a broken joint\n", when(ev.first_crack),
-                         c_.blasthole->interval);
+                         c_.monitor.blasthole->interval);
       out << fmt::format("gas leaves the rock's outer surface: {} (paper: about 3.14 ms)\n", when(ev.ejection));
       out << fmt::format("  the first sample where the gas pressure on the circle half a cell outside the rock's outer\n"
                          "  radius ({:g} m) exceeds twice the ambient pressure ({:.4g} Pa); pressure there then {:.4g} Pa\n",
@@ -161,7 +164,7 @@ class BlastholeFiles {
   }
 
  private:
-  const CoupledCaseConfig& c_;
+  const Case& c_;
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   const ibm::GasRockCoupler& coupler_;
@@ -182,13 +185,13 @@ class BlastholeFiles {
 //! every row of the coupling series, and their lines of summary.txt.
 class ChargeFiles {
  public:
-  ChargeFiles(const CoupledCaseConfig& c, const cip::GasSolver& gas, const ibm::GasRockCoupler& coupler, bool resume)
-      : c_(c), gas_(gas), coupler_(coupler), peak_(c.charges.size(), 0.0), peak_time_(c.charges.size(), -1.0) {
-    if (c.charges.empty()) return;
+  ChargeFiles(const Case& c, const cip::GasSolver& gas, const ibm::GasRockCoupler& coupler, bool resume)
+      : c_(c), gas_(gas), coupler_(coupler), peak_(c.coupling.charges.size(), 0.0), peak_time_(c.coupling.charges.size(), -1.0) {
+    if (c.coupling.charges.empty()) return;
     std::string h = "time_s";
-    for (std::size_t k = 0; k < c.charges.size(); ++k)
+    for (std::size_t k = 0; k < c.coupling.charges.size(); ++k)
       h += fmt::format(",charge{0}_pressure_Pa,charge{0}_energy_J_per_m", k);
-    file_.emplace((make_output_dir(c.gas.output_directory) / "charges.csv").string(), h, resume);
+    file_.emplace((make_output_dir(c.output.directory) / "charges.csv").string(), h, resume);
   }
   void sample(double t) {
     if (!file_) return;
@@ -203,15 +206,15 @@ class ChargeFiles {
   }
   //! summary.txt lines: per charge its initiation, its peak borehole pressure and the energy it released.
   std::string summary() const {
-    if (c_.charges.empty()) return {};
+    if (c_.coupling.charges.empty()) return {};
     const std::vector<double> e = coupler_.charges()->energies(gas_);
-    const ibm::ChargeProducts& q = c_.charge_products;
+    const ibm::ChargeProducts& q = c_.coupling.charge_products;
     std::string out = fmt::format("charges: products start at {:g} kg/m3 and {:.4g} J/kg ({:.4g} Pa); borehole pressure = "
                                   "mean over the hole's active cells (charges.csv)\n",
                                   q.density, q.specific_energy,
                                   c_.gas.explosive->pressure(q.density, q.specific_energy));
-    for (std::size_t k = 0; k < c_.charges.size(); ++k) {
-      const ibm::Charge& ch = c_.charges[k];
+    for (std::size_t k = 0; k < c_.coupling.charges.size(); ++k) {
+      const ibm::Charge& ch = c_.coupling.charges[k];
       const double nominal = q.density * q.specific_energy * M_PI * ch.radius * ch.radius;
       out += fmt::format("charge {}: hole [{:g}, {:g}] m, radius {:g} m, charge radius {:g} m; initiation {:.4e} s ({}); "
                          "peak borehole pressure {:.4e} Pa at {:.4e} s; energy released {:.4e} J/m ({:.1f} % of rho0 e0 "
@@ -240,7 +243,7 @@ class ChargeFiles {
   }
 
  private:
-  const CoupledCaseConfig& c_;
+  const Case& c_;
   const cip::GasSolver& gas_;
   const ibm::GasRockCoupler& coupler_;
   std::optional<CsvSeries> file_;
@@ -248,13 +251,11 @@ class ChargeFiles {
 };
 
 //! The case as the checkpoint records it: the resolved input, less the keys a restart may change.
-std::string checkpoint_case_text(const CoupledCaseConfig& c) {
+std::string checkpoint_case_text(const Case& c) {
   std::string text;
-  for (const std::string& line : c.echo) {
-    const bool may_change = line.rfind("time.end ", 0) == 0 || line.rfind("time.max_steps ", 0) == 0 ||
-                            line.rfind("output.progress_interval ", 0) == 0 || line.rfind("output.directory ", 0) == 0;
-    if (!may_change) text += line + "\n";
-  }
+  const std::set<std::string> may_change{"time.end", "time.max_steps", "output.progress_interval", "output.directory"};
+  for (const EchoLine& line : c.echo)
+    if (!may_change.count(line.key)) text += line.text + "\n";
   return text;
 }
 
@@ -275,31 +276,30 @@ void check_same_case(const std::string& saved, const std::string& now, const std
 //! (ibm::plan_coupled_step: one dt for both, or the rock subcycling), or time.dt checked against both.
 class CoupledStepper : public Stepper {
  public:
-  CoupledStepper(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler)
+  CoupledStepper(const Case& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler)
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler) {}
   double time() const override { return gas_.time(); }
   long long steps() const override { return gas_.steps(); }
   double next_dt(double until) override {
-    const CaseConfig& gc = c_.gas;
     const ibm::CoupledStep s = coupler_.plan_step(until);  // charges due now burn first
-    checked_signal_rate(gas_, gc.output_directory, coupler_.signal_rate());
-    if (gc.fixed_dt) check_fixed_dt_courant(*gc.fixed_dt, coupler_.signal_rate(), gc.courant, gas_);
+    checked_signal_rate(gas_, c_.output.directory, coupler_.signal_rate());
+    if (c_.time.dt) check_fixed_dt_courant(*c_.time.dt, coupler_.signal_rate(), c_.gas.courant, gas_);
     substeps_ = s.rock_substeps;
     return s.dt;
   }
   void step(double dt) override {
     coupler_.step(dt, substeps_);  // rock -> gas, gas, gas -> rock, rock (throws InstabilityError on a non-finite rock)
-    checked_signal_rate(gas_, c_.gas.output_directory, coupler_.signal_rate());
+    checked_signal_rate(gas_, c_.output.directory, coupler_.signal_rate());
   }
   std::string progress_note() const override {
     const fdem::RockEnergies e = rock_.energies();
     return fmt::format("{}  broken joints {}  crack length {:.3f} m",
-                       c_.rock_subcycling ? fmt::format("  rock substeps {}", substeps_) : std::string(), e.broken_joints,
+                       c_.time.rock_subcycling ? fmt::format("  rock substeps {}", substeps_) : std::string(), e.broken_joints,
                        e.crack_length);
   }
 
  private:
-  const CoupledCaseConfig& c_;
+  const Case& c_;
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   ibm::GasRockCoupler& coupler_;
@@ -310,12 +310,12 @@ class CoupledStepper : public Stepper {
 //! monitor's files, and the checkpoint with every snapshot.
 class CoupledRunOutputs : public RunOutputs {
  public:
-  CoupledRunOutputs(const CoupledCaseConfig& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler,
-                    const RockModel& model, std::ostream& log, bool resume)
-      : c_(c), gas_(gas), rock_(rock), coupler_(coupler), log_(log), gas_out_(c.gas, gas, log, false, resume),
-        rock_out_(c.rock, model, resume), series_(c, gas, rock, coupler, resume), blasthole_(c, gas, rock, coupler, resume),
+  CoupledRunOutputs(const Case& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler,
+                    const fdem::RockModel& model, std::ostream& log, bool resume)
+      : c_(c), gas_(gas), rock_(rock), coupler_(coupler), log_(log), gas_out_(c, gas, log, false, resume),
+        rock_out_(c, model, resume), series_(c, gas, rock, coupler, resume), blasthole_(c, gas, rock, coupler, resume),
         charges_(c, gas, coupler, resume),
-        checkpoint_path_((std::filesystem::path(c.gas.output_directory) / "checkpoint.bin").string()) {
+        checkpoint_path_((std::filesystem::path(c.output.directory) / "checkpoint.bin").string()) {
     rock_out_.set_crack_gas(coupler.crack_gas() ? &coupler.crack_gas()->crack_gas() : nullptr);
   }
 
@@ -327,7 +327,7 @@ class CoupledRunOutputs : public RunOutputs {
     series_.write();
     charges_.sample(gas_.time());
     blasthole_.sample();
-    if (c_.checkpoint) write_checkpoint();
+    if (c_.output.checkpoint) write_checkpoint();
   }
   //! Everything a run needs to go on bit for bit, written atomically.
   void write_checkpoint() {
@@ -366,11 +366,11 @@ class CoupledRunOutputs : public RunOutputs {
   void after_step(double dt, bool last) override {
     const bool snapshot = gas_out_.write_due(dt, false);
     if (snapshot) rock_out_.snapshot();
-    const bool row = gas_.steps() % c_.gas.monitor_interval == 0;
+    const bool row = gas_.steps() % c_.output.monitor_interval == 0;
     if (row) write_rows();
     blasthole_.sample();
     if (snapshot) blasthole_.write_summary(rock_.energies(), charges_.summary() + rock_out_.summary());
-    if (snapshot && c_.checkpoint) write_checkpoint();
+    if (snapshot && c_.output.checkpoint) write_checkpoint();
     if (!last) return;
     gas_out_.write_end(dt, snapshot);
     if (!snapshot) rock_out_.snapshot();
@@ -379,15 +379,14 @@ class CoupledRunOutputs : public RunOutputs {
   }
   //! One row of rock_series.csv and coupling_series.csv, and the budget warning.
   void write_rows() {
-    const CaseConfig& gc = c_.gas;
     rock_out_.monitor();
     const double drift = series_.write();
     charges_.sample(gas_.time());
-    if (!warned_ && std::fabs(drift) > gc.drift_warning) {
+    if (!warned_ && std::fabs(drift) > c_.output.drift_warning) {
       warned_ = true;
       log_ << fmt::format("warning: the gas + rock energy budget is off by {:+.3e} of the initial energy and the charges' (> "
                           "output.drift_warning = {:g}) at step {} (t = {:.6e} s); coupling_series.csv has the history\n",
-                          drift, gc.drift_warning, gas_.steps(), gas_.time());
+                          drift, c_.output.drift_warning, gas_.steps(), gas_.time());
     }
   }
   void finish() override {
@@ -400,7 +399,7 @@ class CoupledRunOutputs : public RunOutputs {
   }
 
  private:
-  const CoupledCaseConfig& c_;
+  const Case& c_;
   cip::GasSolver& gas_;
   fdem::RockSolver& rock_;
   ibm::GasRockCoupler& coupler_;
@@ -416,43 +415,44 @@ class CoupledRunOutputs : public RunOutputs {
 
 }  // namespace
 
-void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOptions& options) {
-  const CaseConfig& gc = c.gas;
-  if (gc.vtk && !vtk_available())
+void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& options) {
+  const GasSettings& g = c.gas;
+  const CouplingSettings& k = c.coupling;
+  if (c.output.vtk && !vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
-  RockModel model = make_rock_model(c.rock);
+  fdem::RockModel model = make_rock_model(c);
   fdem::RockSolver& rock = *model.solver;
-  const double rock_dt = rock_time_step(c.rock, rock);  // checks a fixed dt against the rock's stable step
-  cip::GasSolver gas(gc.grid, gc.materials(), gc.solver);
-  gas.initialise([&](double x, double y) { return gc.initial_state(x, y); });
+  const double rock_dt = rock_time_step(c, rock);  // checks a fixed dt against the rock's stable step
+  cip::GasSolver gas(g.grid, g.materials(), g.solver);
+  gas.initialise([&](double x, double y) { return g.initial_state(x, y); });
   ibm::CouplerOptions coupling;
-  coupling.gas_load = c.gas_load;
-  coupling.courant = gc.courant;
+  coupling.gas_load = k.gas_load;
+  coupling.courant = g.courant;
   coupling.rock_dt = rock_dt;
-  coupling.rock_subcycling = c.rock_subcycling;
-  coupling.fixed_dt = gc.fixed_dt;
-  ibm::GasRockCoupler coupler(gas, rock, gc.ambient, coupling);
-  if (c.crack_gas) coupler.enable_crack_gas(c.crack_gas_options);
-  if (!c.charges.empty()) {
-    coupler.set_charges(c.charges, c.charge_products);
-    const ibm::ChargeProducts& q = c.charge_products;
+  coupling.rock_subcycling = c.time.rock_subcycling;
+  coupling.fixed_dt = c.time.dt;
+  ibm::GasRockCoupler coupler(gas, rock, g.ambient, coupling);
+  if (k.crack_gas) coupler.enable_crack_gas(k.crack_gas_options);
+  if (!k.charges.empty()) {
+    coupler.set_charges(k.charges, k.charge_products);
+    const ibm::ChargeProducts& q = k.charge_products;
     log << fmt::format("charges: {}; products start at rho0 {:g} kg/m3, e0 {:.4g} J/kg: p(rho0, e0) = {:.4g} Pa (rho0 D^2 / 8 = "
-                       "{:.4g} Pa with D = {:g} m/s)\n", c.charges.size(), q.density, q.specific_energy,
-                       gc.explosive->pressure(q.density, q.specific_energy),
-                       q.density * gc.detonation_velocity * gc.detonation_velocity / 8, gc.detonation_velocity);
+                       "{:.4g} Pa with D = {:g} m/s)\n", k.charges.size(), q.density, q.specific_energy,
+                       g.explosive->pressure(q.density, q.specific_energy),
+                       q.density * g.detonation_velocity * g.detonation_velocity / 8, g.detonation_velocity);
   }
   const bool resume = options.restart;
   if (!resume) coupler.rock_to_gas();  // masks first: cells under rock take the ambient state before any output
   log << fmt::format("coupled: gas {} x {} cells of {:.4g} x {:.4g} m ({} covered by rock); rock {} triangles, {} joints, "
                      "stable step {:.4g} s; gas load on the rock: {}; {}\n",
-                     gc.grid.nx, gc.grid.ny, gc.grid.dx, gc.grid.dy, coupler.inactive_cells(), rock.triangle_count(),
-                     rock.joint_count(), rock.stable_dt(), ibm::gas_load_name(c.gas_load),
-                     c.crack_gas ? fmt::format("crack gas on (residual aperture {:.3g} m, friction factor {:.3g}, {} junctions)",
-                                               c.crack_gas_options.residual_aperture, c.crack_gas_options.friction_factor,
+                     g.grid.nx, g.grid.ny, g.grid.dx, g.grid.dy, coupler.inactive_cells(), rock.triangle_count(),
+                     rock.joint_count(), rock.stable_dt(), ibm::gas_load_name(k.gas_load),
+                     k.crack_gas ? fmt::format("crack gas on (residual aperture {:.3g} m, friction factor {:.3g}, {} junctions)",
+                                               k.crack_gas_options.residual_aperture, k.crack_gas_options.friction_factor,
                                                coupler.crack_gas()->crack_gas().junction_count())
                                  : std::string("crack gas off"));
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
-  const std::string checkpoint_path = (std::filesystem::path(gc.output_directory) / "checkpoint.bin").string();
+  const std::string checkpoint_path = (std::filesystem::path(c.output.directory) / "checkpoint.bin").string();
   std::optional<CheckpointReader> reader;
   if (resume) {
     reader.emplace(checkpoint_path);
@@ -462,7 +462,7 @@ void run_coupled_case(const CoupledCaseConfig& c, std::ostream& log, const RunOp
   if (resume) outputs.read_checkpoint(*reader);
   else outputs.start();
   CoupledStepper stepper(c, gas, rock, coupler);
-  run_loop(stepper, outputs, RunControl{gc.end_time, gc.max_steps, gc.progress_interval}, log, options);
+  run_loop(stepper, outputs, RunControl{c.time.end, c.time.max_steps, c.output.progress_interval}, log, options);
 }
 
 }  // namespace blastsim::app

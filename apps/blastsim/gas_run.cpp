@@ -1,11 +1,10 @@
 //! \file gas_run.cpp
 //! \brief A gas-only case of the driver: the gas stepper (Courant dt, stability guard) and its outputs (VTK
 //! series, CSV probes, totals) in the run loop.
-#include "gas_run.hpp"
-
 #include "blastsim/core/error.hpp"
 #include "gas_outputs.hpp"
 #include "run_loop.hpp"
+#include "vtk_gas_writer.hpp"
 
 namespace blastsim::app {
 
@@ -15,26 +14,26 @@ namespace {
 //! output events; every new state checked before anything writes it.
 class GasStepper : public Stepper {
  public:
-  GasStepper(const CaseConfig& c, cip::GasSolver& solver)
-      : c_(c), solver_(solver), rate_(checked_signal_rate(solver, c.output_directory)) {}
+  GasStepper(const Case& c, cip::GasSolver& solver)
+      : c_(c), solver_(solver), rate_(checked_signal_rate(solver, c.output.directory, solver.max_signal_rate())) {}
   double time() const override { return solver_.time(); }
   long long steps() const override { return solver_.steps(); }
   double next_dt(double until) override {
-    if (c_.fixed_dt) {
-      check_fixed_dt_courant(*c_.fixed_dt, rate_, c_.courant, solver_);
-      return *c_.fixed_dt;
+    if (c_.time.dt) {
+      check_fixed_dt_courant(*c_.time.dt, rate_, c_.gas.courant, solver_);
+      return *c_.time.dt;
     }
-    double dt = c_.courant / rate_;
+    double dt = c_.gas.courant / rate_;
     if (solver_.time() + dt > until) dt = until - solver_.time();
     return dt;
   }
   void step(double dt) override {
     solver_.step(dt);
-    rate_ = checked_signal_rate(solver_, c_.output_directory);
+    rate_ = checked_signal_rate(solver_, c_.output.directory, solver_.max_signal_rate());
   }
 
  private:
-  const CaseConfig& c_;
+  const Case& c_;
   cip::GasSolver& solver_;
   double rate_;  // signal rate [1/s] of the current state
 };
@@ -55,16 +54,16 @@ class GasRunOutputs : public RunOutputs {
 
 }  // namespace
 
-void run_gas_case(const CaseConfig& c, std::ostream& log, const RunOptions& options) {
-  if (c.vtk && !vtk_available())
+void run_gas_case(const Case& c, std::ostream& log, const RunOptions& options) {
+  if (c.output.vtk && !vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
-  cip::GasSolver solver(c.grid, c.materials(), c.solver);
-  solver.initialise([&](double x, double y) { return c.initial_state(x, y); });
+  cip::GasSolver solver(c.gas.grid, c.gas.materials(), c.gas.solver);
+  solver.initialise([&](double x, double y) { return c.gas.initial_state(x, y); });
   GasOutputs out(c, solver, log);
   out.write_due(0.0, true);
   GasStepper stepper(c, solver);
   GasRunOutputs outputs(out);
-  run_loop(stepper, outputs, RunControl{c.end_time, c.max_steps, c.progress_interval}, log, options);
+  run_loop(stepper, outputs, RunControl{c.time.end, c.time.max_steps, c.output.progress_interval}, log, options);
 }
 
 }  // namespace blastsim::app

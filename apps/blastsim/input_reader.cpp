@@ -48,8 +48,10 @@ std::string Range::describe() const {
   return "any finite number";
 }
 
-TableReader::TableReader(const toml::table& table, std::string path, std::vector<std::string>& echo)
+TableReader::TableReader(const toml::table& table, std::string path, std::vector<EchoLine>& echo)
     : table_(&table), path_(std::move(path)), echo_(&echo) {}
+
+void TableReader::echo(const std::string& key, std::string line) { echo_->push_back({key_path(key), std::move(line)}); }
 
 const toml::node* TableReader::find(const std::string& key) {
   known_.push_back(key);
@@ -75,7 +77,7 @@ double TableReader::number(const std::string& key, const char* unit, Range range
   }
   if (!range.contains(v))
     throw InputError(fmt::format("{} = {}: must be {}", key_path(key), with_unit(show(v), unit), range.describe()));
-  echo_->push_back(fmt::format("{} = {}{}", key_path(key), with_unit(show(v), unit), n ? "" : "   (default)"));
+  echo(key, fmt::format("{} = {}{}", key_path(key), with_unit(show(v), unit), n ? "" : "   (default)"));
   return v;
 }
 
@@ -102,7 +104,7 @@ long long TableReader::integer(const std::string& key, const char* unit, long lo
   if (v < min_value || v > max_value)
     throw InputError(v < min_value ? fmt::format("{} = {}: must be an integer >= {}", key_path(key), v, min_value)
                                    : fmt::format("{} = {}: must be an integer <= {}", key_path(key), v, max_value));
-  echo_->push_back(fmt::format("{} = {}{}", key_path(key), with_unit(std::to_string(v), unit), n ? "" : "   (default)"));
+  echo(key, fmt::format("{} = {}{}", key_path(key), with_unit(std::to_string(v), unit), n ? "" : "   (default)"));
   return v;
 }
 
@@ -117,7 +119,7 @@ bool TableReader::boolean(const std::string& key, std::optional<bool> fallback) 
   } else {
     throw InputError(fmt::format("{} must be true or false, got {}", key_path(key), type_name(*n)));
   }
-  echo_->push_back(fmt::format("{} = {}{}", key_path(key), v ? "true" : "false", n ? "" : "   (default)"));
+  echo(key, fmt::format("{} = {}{}", key_path(key), v ? "true" : "false", n ? "" : "   (default)"));
   return v;
 }
 
@@ -137,7 +139,7 @@ std::string TableReader::text(const std::string& key, const std::vector<std::str
   }
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), v) == allowed.end())
     throw InputError(fmt::format("{} = \"{}\": must be one of {}", key_path(key), v, list));
-  echo_->push_back(fmt::format("{} = \"{}\"{}", key_path(key), v, n ? "" : "   (default)"));
+  echo(key, fmt::format("{} = \"{}\"{}", key_path(key), v, n ? "" : "   (default)"));
   return v;
 }
 
@@ -156,7 +158,7 @@ std::array<double, 2> TableReader::pair(const std::string& key, const char* unit
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]))
       throw InputError(fmt::format("{} must hold finite numbers", key_path(key)));
   }
-  echo_->push_back(fmt::format("{} = [{}, {}]{}{}", key_path(key), show(v[0]), show(v[1]),
+  echo(key, fmt::format("{} = [{}, {}]{}{}", key_path(key), show(v[0]), show(v[1]),
                                unit && *unit ? std::string(" ") + unit : "", n ? "" : "   (default)"));
   return v;
 }
@@ -177,7 +179,7 @@ std::vector<double> TableReader::number_list(const std::string& key, const char*
     out.push_back(*d);
     shown += (shown.empty() ? "" : ", ") + show(*d);
   }
-  echo_->push_back(fmt::format("{} = [{}]{}", key_path(key), shown, unit && *unit ? std::string(" ") + unit : ""));
+  echo(key, fmt::format("{} = [{}]{}", key_path(key), shown, unit && *unit ? std::string(" ") + unit : ""));
   return out;
 }
 
@@ -196,7 +198,7 @@ std::vector<TableReader> TableReader::table_array(const std::string& key) {
   std::vector<TableReader> out;
   if (!n) return out;
   const toml::array* a = n->as_array();
-  if (!a || !a->is_array_of_tables())
+  if (!a || (!a->empty() && !a->is_array_of_tables()))  // an empty array ([]) is none
     throw InputError(fmt::format("{} must be an array of tables ([[{}]] entries)", key_path(key), key_path(key)));
   for (size_t k = 0; k < a->size(); ++k)
     out.emplace_back(*(*a)[k].as_table(), fmt::format("{}.{}", key_path(key), k), *echo_);
@@ -259,6 +261,12 @@ void apply_override(toml::table& root, const std::string& assignment) {
     t = n->as_table();
   }
   t->insert_or_assign(parts.back(), *parsed.get("v"));
+}
+
+toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides) {
+  toml::table input = parse_input_file(input_path);
+  for (const std::string& o : overrides) apply_override(input, o);
+  return input;
 }
 
 toml::table parse_input_file(const std::string& path) {

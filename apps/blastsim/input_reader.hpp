@@ -26,12 +26,18 @@ struct Range {
   std::string describe() const;
 };
 
+//! One line of the resolved configuration: the full key and "key = value unit" (defaults marked).
+struct EchoLine {
+  std::string key;
+  std::string text;
+};
+
 //! Reads one TOML table. Every getter records the key as known; finish() rejects the keys nobody asked
 //! for. Errors are InputError with the full key path, the value and what is allowed. Every value read is
 //! added to the shared echo list with its unit.
 class TableReader {
  public:
-  TableReader(const toml::table& table, std::string path, std::vector<std::string>& echo);
+  TableReader(const toml::table& table, std::string path, std::vector<EchoLine>& echo);
 
   double number(const std::string& key, const char* unit, Range range, std::optional<double> fallback = {});
   std::optional<double> optional_number(const std::string& key, const char* unit, Range range);
@@ -45,7 +51,7 @@ class TableReader {
   bool has(const std::string& key) const;
   //! Sub-table (empty when absent and not required).
   TableReader table(const std::string& key, bool required = false);
-  //! Array of tables (zero or more entries).
+  //! Array of tables (zero or more entries; an empty array `[]` is none).
   std::vector<TableReader> table_array(const std::string& key);
   const std::string& path() const { return path_; }
   std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
@@ -55,10 +61,11 @@ class TableReader {
  private:
   const toml::node* find(const std::string& key);
   [[noreturn]] void missing(const std::string& key, const std::string& what) const;
+  void echo(const std::string& key, std::string line);
   const toml::table* table_;
   toml::table empty_;
   std::string path_;
-  std::vector<std::string>* echo_;
+  std::vector<EchoLine>* echo_;
   std::vector<std::string> known_;
 };
 
@@ -68,5 +75,7 @@ void apply_override(toml::table& root, const std::string& assignment);
 
 //! Parses a file; syntax errors become InputError with file, line and column.
 toml::table parse_input_file(const std::string& path);
+//! Parses a case file and applies the "section.key=value" overrides in order.
+toml::table load_input(const std::string& input_path, const std::vector<std::string>& overrides);
 
 }  // namespace blastsim::app

@@ -3,44 +3,15 @@
 #include "blastsim/core/backend.hpp"
 #include "blastsim/core/error.hpp"
 #include "blastsim/core/macros.hpp"
-#include "case_input.hpp"
-#include "coupled_run.hpp"
-#include "gas_run.hpp"
-#include "rock_run.hpp"
+#include "case.hpp"
+#include "run_loop.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <iostream>
-#include <map>
 #include <vector>
 
-namespace {
-const std::string& config_directory(const blastsim::app::CoupledCaseConfig& c) { return c.gas.output_directory; }
-template <class Config>
-const std::string& config_directory(const Config& c) { return c.output_directory; }
-//! The kernel profile (--profile): each label's wall time, launches and share, then per library.
-void print_profile(std::ostream& out) {
-  const auto& entries = blastsim::KernelProfile::instance().entries();
-  double total = 0;
-  std::map<std::string, double> group;
-  for (const auto& [label, e] : entries) {
-    total += e.seconds;
-    group[label.substr(0, label.find('.'))] += e.seconds;
-  }
-  std::vector<std::pair<std::string, blastsim::KernelProfile::Entry>> sorted(entries.begin(), entries.end());
-  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second.seconds > b.second.seconds; });
-  out << fmt::format("kernel profile (each launch synchronised; {:.3f} s in kernels):\n", total);
-  out << fmt::format("  {:<32} {:>10} {:>12} {:>12} {:>7}\n", "kernel", "launches", "total s", "ms/launch", "share");
-  for (const auto& [label, e] : sorted)
-    out << fmt::format("  {:<32} {:>10} {:>12.4f} {:>12.4f} {:>6.1f}%\n", label, e.launches, e.seconds,
-                       1e3 * e.seconds / e.launches, 100 * e.seconds / total);
-  for (const auto& [name, seconds] : group)
-    out << fmt::format("  {:<32} {:>36.4f} {:>6.1f}%\n", name + ".*", seconds, 100 * seconds / total);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App cli{"blastsim: 2-D rock-blasting simulator (CIP gas, FDEM rock, or both coupled by immersed boundaries)"};
@@ -59,28 +30,23 @@ int main(int argc, char** argv) {
 
   using namespace blastsim;
   try {
-    const toml::table table = app::load_input(input, overrides);
-    auto echo = [&](const std::vector<std::string>& lines) {
-      std::cout << fmt::format("blastsim {}, backend {}\nresolved configuration of {}:\n", BLASTSIM_VERSION,
-                               backend_name(), input);
-      for (const std::string& line : lines) std::cout << "  " << line << "\n";
-    };
-    auto run = [&](const auto& config, auto runner) {
-      echo(config.echo);
-      if (check_only) return;
-      KernelProfile::instance().enable(profile);
-      runner(config, std::cout, app::RunOptions{quiet, restart});
-      if (profile) print_profile(std::cout);
-      std::cout << "done; results in " << config_directory(config) << "\n";
-    };
-    if (restart && app::case_kind(table) != app::CaseKind::coupled)
+    const app::Case c = app::read_case(app::load_input(input, overrides));
+    if (restart && c.kind != app::CaseKind::coupled)
       throw InputError("--restart: checkpoints are written by coupled gas-rock cases only; this input is a " +
-                       std::string(app::case_kind(table) == app::CaseKind::rock ? "rock-only" : "gas-only") + " case");
-    switch (app::case_kind(table)) {
-      case app::CaseKind::rock: run(app::read_rock_case(table), app::run_rock_case); break;
-      case app::CaseKind::coupled: run(app::read_coupled_case(table), app::run_coupled_case); break;
-      case app::CaseKind::gas: run(app::read_case(table), app::run_gas_case); break;
+                       std::string(c.kind == app::CaseKind::rock ? "rock-only" : "gas-only") + " case");
+    std::cout << fmt::format("blastsim {}, backend {}\nresolved configuration of {}:\n", BLASTSIM_VERSION, backend_name(),
+                             input);
+    for (const app::EchoLine& line : c.echo) std::cout << "  " << line.text << "\n";
+    if (check_only) return 0;
+    KernelProfile::instance().enable(profile);
+    const app::RunOptions options{quiet, restart};
+    switch (c.kind) {
+      case app::CaseKind::rock: app::run_rock_case(c, std::cout, options); break;
+      case app::CaseKind::coupled: app::run_coupled_case(c, std::cout, options); break;
+      case app::CaseKind::gas: app::run_gas_case(c, std::cout, options); break;
     }
+    if (profile) std::cout << KernelProfile::instance().report();
+    std::cout << "done; results in " << c.output.directory << "\n";
   } catch (const InputError& e) {
     std::cerr << "input error: " << e.what() << "\n";
     return 2;

@@ -1,8 +1,12 @@
 //! \file output_files.hpp
-//! \brief Crash-safe output files: every file is written under a temporary name and renamed into place.
+//! \brief Crash-safe output files: every file is written under a temporary name and renamed into place; the
+//! output folder; the output series' part of a checkpoint.
 #pragma once
 
+#include "blastsim/core/checkpoint.hpp"
+
 #include <cmath>
+#include <filesystem>
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -62,5 +66,12 @@ class CsvSeries {
   std::string path_;
   std::ofstream out_;
 };
+
+//! Creates the output folder; returns its path. OutputError when it cannot.
+std::filesystem::path make_output_dir(const std::string& d);
+
+//! A .pvd collection's entries in a checkpoint (times, then the file names one per line), and back.
+void write_pvd_checkpoint(CheckpointWriter& w, const std::string& name, const PvdSeries& pvd);
+void read_pvd_checkpoint(CheckpointReader& r, const std::string& name, PvdSeries& pvd);
 
 }  // namespace blastsim::app

@@ -13,139 +13,27 @@
 
 namespace blastsim::app {
 
-namespace {
-
-fdem::NamedMesh make_mesh(const RockMeshSpec& s) {
-  const double h = s.element_size;
-  if (s.shape == "rectangle") return fdem::gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h, s.joint_lines);
-  if (s.shape == "disc") return fdem::gmsh_disc(s.center[0], s.center[1], s.radius, h, s.joint_lines);
-  if (s.mesher == "rings")  // read_mesh allows it for disc_with_hole only
-    return fdem::ring_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
-  if (s.shape == "disc_with_hole")
-    return fdem::gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.joint_lines);
-  if (s.shape == "rectangle_with_hole")
-    return fdem::gmsh_rectangle_with_hole(s.min[0], s.min[1], s.max[0], s.max[1], s.center[0], s.center[1],
-                                          s.hole_radius, h);
-  if (s.shape == "rectangle_with_holes")
-    return fdem::gmsh_rectangle_with_holes(s.min[0], s.min[1], s.max[0], s.max[1], s.holes, h, s.joint_lines);
-  if (s.shape == "disc_with_holes") return fdem::gmsh_disc_with_holes(s.center[0], s.center[1], s.radius, s.holes, h, s.joint_lines);
-  return fdem::read_gmsh_file(s.file);
+fdem::RockModel make_rock_model(const Case& c) {
+  fdem::RockModelSpec spec = c.rock.model;
+  for (size_t k = 0; k < c.probes.rock_points.size(); ++k) {
+    const ProbeSettings::RockPoint& p = c.probes.rock_points[k];
+    spec.probes.push_back({fmt::format("probe.rock_point.{}", k), p.position, p.until});
+  }
+  return fdem::build_rock_model(spec);
 }
 
-//! Nodes whose initial position lies in the load's box.
-std::vector<int> nodes_in_box(const fdem::FdemTopology& topo, const VelocityLoad& l) {
-  std::vector<int> nodes;
-  for (size_t n = 0; n < topo.node_positions.size(); ++n) {
-    const auto& p = topo.node_positions[n];
-    if (p[0] >= l.min[0] && p[0] <= l.max[0] && p[1] >= l.min[1] && p[1] <= l.max[1]) nodes.push_back(static_cast<int>(n));
-  }
-  return nodes;
+double rock_time_step(const Case& c, const fdem::RockSolver& solver) {
+  const bool fixed = c.time.dt && !(c.kind == CaseKind::coupled && c.time.rock_subcycling);
+  if (!fixed) return c.time.step_fraction * solver.stable_dt();
+  if (*c.time.dt > solver.stable_dt())
+    throw InputError(fmt::format("time.dt = {} s exceeds the rock's stable step {:.4g} s for this mesh and these "
+                                 "penalties: give time.dt <= {:.4g} s or leave it out", *c.time.dt, solver.stable_dt(),
+                                 solver.stable_dt()));
+  return *c.time.dt;
 }
 
-//! The vertices that lie on a joint line (kept in place by the mesh jitter: the lines stay straight).
-std::vector<int> joint_line_vertices(const fdem::TriangleMesh& mesh, const std::vector<fdem::Segment>& lines, double h) {
-  std::vector<int> out;
-  for (size_t v = 0; v < mesh.vertices.size(); ++v)
-    for (const fdem::Segment& g : lines) {
-      const double lx = g.b[0] - g.a[0], ly = g.b[1] - g.a[1], len2 = lx * lx + ly * ly;
-      const double px = mesh.vertices[v][0] - g.a[0], py = mesh.vertices[v][1] - g.a[1];
-      const double t = std::clamp((px * lx + py * ly) / len2, 0.0, 1.0);
-      if (std::hypot(px - t * lx, py - t * ly) < 1e-6 * h) {
-        out.push_back(static_cast<int>(v));
-        break;
-      }
-    }
-  return out;
-}
-
-}  // namespace
-
-RockModel make_rock_model(const RockCaseConfig& c) {
-  RockModel m;
-  m.mesh = make_mesh(c.mesh);
-  if (c.mesh.jitter > 0) {
-    try {
-      fdem::perturb_mesh(m.mesh.mesh, c.mesh.jitter, static_cast<std::uint64_t>(c.mesh.seed),
-                         joint_line_vertices(m.mesh.mesh, c.mesh.joint_lines, c.mesh.element_size));
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("rock.mesh.jitter = {}: the perturbed mesh is invalid ({}); use a smaller jitter",
-                                   c.mesh.jitter, e.what()));
-    }
-  }
-  m.topology = fdem::build_topology(m.mesh.mesh);
-  m.solver = std::make_unique<fdem::RockSolver>(m.topology, c.material, c.options);
-  fdem::RockSolver& solver = *m.solver;
-  const fdem::FdemTopology& topo = m.topology;
-  const fdem::NamedMesh& mesh = m.mesh;
-  // Loads. Initial velocities first: prescribed velocities then override them on their nodes.
-  if (c.initial_velocity[0] != 0 || c.initial_velocity[1] != 0) {
-    std::vector<double> v(2 * solver.node_count());
-    for (int n = 0; n < solver.node_count(); ++n) v[2 * n] = c.initial_velocity[0], v[2 * n + 1] = c.initial_velocity[1];
-    solver.set_velocities(v);
-  }
-  for (size_t k = 0; k < c.velocities.size(); ++k) {
-    const VelocityLoad& l = c.velocities[k];
-    const std::vector<int> nodes = nodes_in_box(topo, l);
-    if (nodes.empty())
-      throw InputError(fmt::format("rock.velocity.{}: no mesh node lies in the box [{}, {}] x [{}, {}] m", k, l.min[0],
-                                   l.max[0], l.min[1], l.max[1]));
-    solver.prescribe_velocity(nodes, l.along_x, l.along_y, l.velocity[0], l.velocity[1]);
-    m.velocity_nodes.push_back(nodes);
-  }
-  // The edge slots of a named boundary group; `key` names the input table that asked for it.
-  auto group_slots = [&](const std::string& key, const std::string& group_name) {
-    const auto group = mesh.boundary_groups.find(group_name);
-    if (group == mesh.boundary_groups.end()) {
-      std::string names;
-      for (const auto& [name, edges] : mesh.boundary_groups) names += (names.empty() ? "" : ", ") + name;
-      throw InputError(fmt::format("{}.boundary = \"{}\": the mesh has no such boundary group (it has: {})", key,
-                                   group_name, names));
-    }
-    return fdem::boundary_slots(topo, group->second, group_name);
-  };
-  for (size_t k = 0; k < c.pressures.size(); ++k)
-    solver.set_edge_pressure(group_slots(fmt::format("rock.pressure.{}", k), c.pressures[k].boundary),
-                             c.pressures[k].pressure);
-  std::vector<int> viscous;
-  for (size_t k = 0; k < c.viscous_boundaries.size(); ++k) {
-    const std::vector<int> slots = group_slots(fmt::format("rock.viscous_boundary.{}", k), c.viscous_boundaries[k]);
-    viscous.insert(viscous.end(), slots.begin(), slots.end());
-  }
-  if (!viscous.empty()) solver.set_viscous_boundary(viscous);
-  std::vector<std::array<double, 2>> probe_points;
-  std::vector<double> probe_until;
-  for (const RockProbe& p : c.probes) probe_points.push_back(p.position), probe_until.push_back(p.until);
-  try {
-    solver.set_probes(probe_points, probe_until);
-  } catch (const InputError&) {
-    for (size_t k = 0; k < c.probes.size(); ++k) {  // name the first probe outside the rock
-      try {
-        solver.set_probes({c.probes[k].position});
-      } catch (const InputError&) {
-        throw InputError(fmt::format("probe.rock_point.{}.position = [{}, {}] m (\"{}\"): lies in no triangle of the "
-                                     "rock mesh; a rock probe must lie in the rock", k, c.probes[k].position[0],
-                                     c.probes[k].position[1], c.probes[k].name));
-      }
-    }
-    throw;
-  }
-  return m;
-}
-
-double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver) {
-  double dt = c.step_fraction * solver.stable_dt();
-  if (c.fixed_dt) {
-    if (*c.fixed_dt > solver.stable_dt())
-      throw InputError(fmt::format("time.dt = {} s exceeds the rock's stable step {:.4g} s for this mesh and these "
-                                   "penalties: give time.dt <= {:.4g} s or leave it out", *c.fixed_dt,
-                                   solver.stable_dt(), solver.stable_dt()));
-    dt = *c.fixed_dt;
-  }
-  return dt;
-}
-
-RockOutputs::RockOutputs(const RockCaseConfig& c, const RockModel& model, bool resume)
-    : c_(c), solver_(*model.solver), velocity_nodes_(model.velocity_nodes), dir_(make_output_dir(c.output_directory)),
+RockOutputs::RockOutputs(const Case& c, const fdem::RockModel& model, bool resume)
+    : c_(c), solver_(*model.solver), velocity_nodes_(model.velocity_nodes), dir_(make_output_dir(c.output.directory)),
       rock_pvd_((dir_ / "rock.pvd").string()), joints_pvd_((dir_ / "joints.pvd").string()),
       series_((dir_ / "rock_series.csv").string(),
               [&] {
@@ -166,20 +54,14 @@ RockOutputs::RockOutputs(const RockCaseConfig& c, const RockModel& model, bool r
     for (size_t k = 0; k < c.analysis.holes.size(); ++k) h += fmt::format(",hole{0}_crushed_radius_m,hole{0}_cracked_radius_m", k);
     fragmentation_.emplace((dir_ / "fragmentation_series.csv").string(), h, resume);
   }
-  if (!c.probes.empty()) {
+  if (!c.probes.rock_points.empty()) {
     std::string h = "step,time_s";
-    for (const RockProbe& p : c.probes) h += fmt::format(",{0}_vx_m_per_s,{0}_vy_m_per_s,{0}_speed_m_per_s", p.name);
+    for (const auto& p : c.probes.rock_points) h += fmt::format(",{0}_vx_m_per_s,{0}_vy_m_per_s,{0}_speed_m_per_s", p.name);
     probes_.emplace((dir_ / "rock_probes.csv").string(), h, resume);
   }
   // Damage rings: twice the mean joint length unless given (a ring then holds joints of every orientation).
-  ring_width_ = c.analysis.ring_width;
-  if (ring_width_ == 0) {
-    double sum = 0;
-    for (const fdem::Joint& j : model.topology.joints)
-      sum += std::hypot(model.topology.node_positions[j.a1][0] - model.topology.node_positions[j.a0][0],
-                        model.topology.node_positions[j.a1][1] - model.topology.node_positions[j.a0][1]);
-    ring_width_ = model.topology.joints.empty() ? 1.0 : 2 * sum / model.topology.joints.size();
-  }
+  const double joint = fdem::mean_joint_length(model.topology);
+  ring_width_ = c.analysis.ring_width > 0 ? c.analysis.ring_width : (joint > 0 ? 2 * joint : 1.0);
 }
 
 void RockOutputs::write_checkpoint(CheckpointWriter& w) {
@@ -206,59 +88,48 @@ void RockOutputs::read_checkpoint(CheckpointReader& r) {
 }
 
 void RockOutputs::snapshot() {
-  if (!c_.vtk && !c_.analysis.fragments && c_.probes.empty()) return;
+  if (!c_.output.vtk && !c_.analysis.fragments && c_.probes.rock_points.empty()) return;
   const fdem::RockSnapshot s = solver_.snapshot();
   RockCellFields cells;
   const auto t0 = std::chrono::steady_clock::now();
   if (c_.analysis.fragments) cells.fragment_id = solver_.fragment_labels();
-  if (c_.vtk) cells.damage = fdem::triangle_damage(s);  // for the VTU only
+  if (c_.output.vtk) cells.damage = fdem::triangle_damage(s);  // for the VTU only
   analyse(s, cells.fragment_id);
   analysis_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++analyses_;
   const int index = index_++;
-  if (!c_.vtk) return;
+  if (!c_.output.vtk) return;
   const std::string rock_name = fmt::format("rock_{:06d}.vtu", index);
   const std::string joints_name = fmt::format("joints_{:06d}.vtu", index);
   write_rock_vtu((dir_ / rock_name).string(), s, cells);
-  JointGasFields gas;
-  if (crack_) {
-    const std::vector<std::uint8_t> kind = crack_->kinds();
-    const std::vector<double> w = crack_->apertures();
-    const std::vector<ibm::ChannelPrimitive> p = crack_->primitives();
-    const std::vector<ibm::ChannelConserved> m = crack_->gas();
-    const std::size_t n = kind.size();
-    gas.aperture.assign(n, 0.0), gas.gas_pressure.assign(n, 0.0), gas.gas_mass.assign(n, 0.0);
-    for (std::size_t j = 0; j < n; ++j) {
-      if (kind[j] != ibm::kSegmentNone) gas.aperture[j] = w[j];
-      if (kind[j] == ibm::kSegmentGas) gas.gas_pressure[j] = p[j].p, gas.gas_mass[j] = m[j].m;
-    }
-  }
+  const ibm::CrackSegmentFields gas = crack_ ? crack_->segment_fields() : ibm::CrackSegmentFields{};
   write_joints_vtu((dir_ / joints_name).string(), s, gas);
   rock_pvd_.add(solver_.time(), rock_name);
   joints_pvd_.add(solver_.time(), joints_name);
 }
 
 void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& labels) {
-  const AnalysisSpec& a = c_.analysis;
+  const AnalysisSettings& a = c_.analysis;
   analysed_at_ = solver_.time();
   zones_.clear();
-  for (const DamageHole& h : a.holes)
+  for (const AnalysisSettings::Hole& h : a.holes)
     zones_.push_back(fdem::damage_zone(s, h.center, h.radius, ring_width_, a.crushed_fraction, h.behind));
   if (probes_) {  // ppv.csv: the peak so far at each probe, with its distance from the first hole
     const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
     write_atomically((dir_ / "ppv.csv").string(), [&](std::ostream& out) {
       out << "name,x_m,y_m,distance_from_hole0_m,ppv_m_per_s,peak_time_s,peak_vx_m_per_s,peak_vy_m_per_s\n";
       for (size_t k = 0; k < p.size(); ++k) {
-        const auto& q = c_.probes[k].position;
+        const auto& q = c_.probes.rock_points[k].position;
         const double d = a.holes.empty() ? std::nan("")
                                          : std::hypot(q[0] - a.holes[0].center[0], q[1] - a.holes[0].center[1]);
-        out << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", c_.probes[k].name, q[0], q[1], d,
+        out << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", c_.probes.rock_points[k].name, q[0], q[1], d,
                            p[k].peak_speed, p[k].peak_time, p[k].peak_vx, p[k].peak_vy);
       }
     });
   }
   if (!a.fragments) return;
-  const std::vector<fdem::Fragment> f = fdem::measure_fragments(s, labels, c_.material.density, a.min_fragment_triangles);
+  const std::vector<fdem::Fragment> f =
+      fdem::measure_fragments(s, labels, c_.rock.model.material.density, a.min_fragment_triangles);
   sizes_ = fdem::size_distribution(f, a.oversize);
   double largest = 0;
   for (const fdem::Fragment& g : f) largest = std::max(largest, g.mass);
@@ -292,7 +163,7 @@ void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& l
 
 std::string RockOutputs::summary() const {
   if (analysed_at_ < 0) return {};
-  const AnalysisSpec& a = c_.analysis;
+  const AnalysisSettings& a = c_.analysis;
   std::string out = fmt::format("\nanalysis of the rock at t = {:.4e} s (docs/analysis.md defines each figure)\n", analysed_at_);
   if (a.fragments) {
     const fdem::SizeDistribution& d = sizes_;
@@ -322,16 +193,17 @@ std::string RockOutputs::summary() const {
                        ring_width_, z.crushed_radius, z.crushed_radius / z.hole_radius, z.cracked_radius,
                        z.cracked_radius / z.hole_radius);
   }
-  if (!c_.probes.empty()) {
+  const std::vector<ProbeSettings::RockPoint>& probes = c_.probes.rock_points;
+  if (!probes.empty()) {
     out += "peak particle velocity (largest |v| at each rock probe, updated every step):\n";
     const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
     for (size_t k = 0; k < p.size(); ++k) {
-      const auto& q = c_.probes[k].position;
+      const auto& q = probes[k].position;
       const std::string dist = a.holes.empty() ? std::string()
                                                : fmt::format(", {:.4f} m from hole 0",
                                                              std::hypot(q[0] - a.holes[0].center[0], q[1] - a.holes[0].center[1]));
-      const double until = c_.probes[k].until;
-      out += fmt::format("  {} at ({:g}, {:g}) m{}: PPV {:.4g} m/s at {:.4f} ms{}\n", c_.probes[k].name, q[0], q[1], dist,
+      const double until = probes[k].until;
+      out += fmt::format("  {} at ({:g}, {:g}) m{}: PPV {:.4g} m/s at {:.4f} ms{}\n", probes[k].name, q[0], q[1], dist,
                          p[k].peak_speed, 1e3 * p[k].peak_time,
                          until < 1e300 ? fmt::format(" (window to {:.4f} ms)", 1e3 * until) : std::string());
     }

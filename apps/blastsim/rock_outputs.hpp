@@ -1,38 +1,29 @@
 //! \file rock_outputs.hpp
-//! \brief The rock side of a driver run: building the model (mesh, solver, loads) from a rock case, and what
-//! the run writes about the rock (VTU series of triangles and joints, rock_series.csv). Shared by rock-only
-//! and coupled runs. Include only from kernel sources.
+//! \brief What a driver run writes about the rock, shared by rock-only and coupled runs: the VTU series of
+//! triangles and joints, rock_series.csv, and the analysis of every snapshot (fragments, sizes, damage zones,
+//! PPV).
 #pragma once
 
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/fdem/fragments.hpp"
-#include "blastsim/fdem/gmsh_mesh.hpp"
-#include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/fdem/rock_model.hpp"
 #include "blastsim/ibm/crack_gas.hpp"
-#include "output_checkpoint.hpp"
-#include "rock_config.hpp"
+#include "case.hpp"
+#include "output_files.hpp"
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <memory>
 #include <optional>
 #include <string>
 
 namespace blastsim::app {
 
-//! The mesh, its FDEM topology and the solver with the case's initial velocities, prescribed velocities and
-//! boundary pressures (none in a coupled case: its input refuses them).
-struct RockModel {
-  fdem::NamedMesh mesh;
-  fdem::FdemTopology topology;
-  std::unique_ptr<fdem::RockSolver> solver;
-  std::vector<std::vector<int>> velocity_nodes;  //!< the nodes of each [[rock.velocity]] load
-};
-RockModel make_rock_model(const RockCaseConfig& c);
+//! The rock model of a case (fdem::build_rock_model() with the case's rock probes).
+fdem::RockModel make_rock_model(const Case& c);
 
-//! dt [s] of the rock: the fixed time.dt (refused above the stable step, naming it) or step_fraction x stable.
-double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver);
+//! dt [s] of the rock: the fixed time.dt (refused above the stable step, naming it; a coupled run whose rock
+//! subcycles divides the gas's step instead) or time.step_fraction x the stable step.
+double rock_time_step(const Case& c, const fdem::RockSolver& solver);
 
 //! rock.pvd / rock_NNNNNN.vtu, joints.pvd / joints_NNNNNN.vtu and rock_series.csv in the output folder
 //! (energies, cracks, and the support reaction of each [[rock.velocity]] load: the force a testing machine's
@@ -42,7 +33,7 @@ double rock_time_step(const RockCaseConfig& c, const fdem::RockSolver& solver);
 class RockOutputs {
  public:
   //! `resume`: a restart, whose read_checkpoint() follows (files are kept, not started anew).
-  RockOutputs(const RockCaseConfig& c, const RockModel& model, bool resume = false);
+  RockOutputs(const Case& c, const fdem::RockModel& model, bool resume = false);
   void snapshot();             //!< one .vtu pair (when output.vtk) and the analysis files
   //! A coupled run's crack gas, whose aperture, pressure and mass the joints' VTU then carries.
   void set_crack_gas(const ibm::CrackGas* crack) { crack_ = crack; }
@@ -59,7 +50,7 @@ class RockOutputs {
 
  private:
   void analyse(const fdem::RockSnapshot& s, const std::vector<int>& labels);  //!< the analysis files of a snapshot
-  const RockCaseConfig& c_;
+  const Case& c_;
   fdem::RockSolver& solver_;
   const std::vector<std::vector<int>>& velocity_nodes_;
   const ibm::CrackGas* crack_ = nullptr;

@@ -1,10 +1,8 @@
 //! \file rock_run.cpp
 //! \brief A rock-only case of the driver: the rock stepper (fixed dt, load ramp) and its outputs (VTU series,
 //! rock_series.csv) in the run loop.
-#include "rock_run.hpp"
-
-#include "blastsim/core/error.hpp"
 #include "blastsim/fdem/rock_analysis.hpp"
+#include "gas_outputs.hpp"
 #include "rock_outputs.hpp"
 #include "run_loop.hpp"
 
@@ -23,12 +21,13 @@ namespace {
 //! edge pressures ramped in over rock.pressure_ramp_time.
 class RockStepper : public Stepper {
  public:
-  RockStepper(const RockCaseConfig& c, fdem::RockSolver& solver, double dt) : c_(c), solver_(solver), dt_(dt) {}
+  RockStepper(const Case& c, fdem::RockSolver& solver, double dt) : c_(c), solver_(solver), dt_(dt) {}
   double time() const override { return solver_.time(); }
   long long steps() const override { return solver_.steps(); }
-  double next_dt(double) override { return std::min(dt_, c_.end_time - solver_.time()); }
+  double next_dt(double) override { return std::min(dt_, c_.time.end - solver_.time()); }
   void step(double dt) override {
-    if (c_.pressure_ramp_time > 0) solver_.set_pressure_scale(fdem::half_cosine_ramp(solver_.time(), c_.pressure_ramp_time));
+    const double ramp = c_.rock.pressure_ramp_time;
+    if (ramp > 0) solver_.set_pressure_scale(fdem::half_cosine_ramp(solver_.time(), ramp));
     solver_.step(dt);
   }
   double end_tolerance() const override { return 1e-9; }  // fixed steps land on the end within rounding
@@ -38,7 +37,7 @@ class RockStepper : public Stepper {
   }
 
  private:
-  const RockCaseConfig& c_;
+  const Case& c_;
   fdem::RockSolver& solver_;
   double dt_;
 };
@@ -47,18 +46,15 @@ class RockStepper : public Stepper {
 //! rock_series.csv every output.monitor_interval steps, and both at the end.
 class RockRunOutputs : public RunOutputs {
  public:
-  RockRunOutputs(const RockCaseConfig& c, fdem::RockSolver& solver, RockOutputs& out, std::ostream& log)
-      : c_(c), solver_(solver), out_(out), log_(log),
-        next_snapshot_(c.output_interval > 0 ? c.output_interval : c.end_time) {}
-  double next_event(double) const override { return c_.end_time; }
+  RockRunOutputs(const Case& c, fdem::RockSolver& solver, RockOutputs& out, std::ostream& log)
+      : c_(c), solver_(solver), out_(out), log_(log), schedule_{c.output.interval > 0 ? c.output.interval : c.time.end} {}
+  double next_event(double) const override { return c_.time.end; }
   void after_step(double, bool) override {
-    const double tol = 1e-9 * c_.end_time;
-    if (solver_.steps() % c_.monitor_interval == 0) out_.monitor();
-    const bool listed = next_time_ < c_.output_times.size() && solver_.time() >= c_.output_times[next_time_] - tol;
-    if ((solver_.time() >= next_snapshot_ - tol || listed) && solver_.time() < c_.end_time - tol) {
+    const double tol = 1e-9 * c_.time.end, t = solver_.time();
+    if (solver_.steps() % c_.output.monitor_interval == 0) out_.monitor();
+    if (schedule_.due(c_.output, t, tol) && t < c_.time.end - tol) {
       out_.snapshot();
-      if (c_.output_interval > 0) advance_schedule(next_snapshot_, c_.output_interval, solver_.time() + tol);
-      while (next_time_ < c_.output_times.size() && c_.output_times[next_time_] <= solver_.time() + tol) ++next_time_;
+      schedule_.advance(c_.output, t, tol);
     }
   }
   void finish() override {
@@ -72,29 +68,28 @@ class RockRunOutputs : public RunOutputs {
   }
 
  private:
-  const RockCaseConfig& c_;
+  const Case& c_;
   fdem::RockSolver& solver_;
   RockOutputs& out_;
   std::ostream& log_;
-  double next_snapshot_;
-  size_t next_time_ = 0;  // first of output.times not yet written
+  SnapshotSchedule schedule_;
 };
 
 }  // namespace
 
-void run_rock_case(const RockCaseConfig& c, std::ostream& log, const RunOptions& options) {
-  RockModel model = make_rock_model(c);
+void run_rock_case(const Case& c, std::ostream& log, const RunOptions& options) {
+  fdem::RockModel model = make_rock_model(c);
   fdem::RockSolver& solver = *model.solver;
   const double dt = rock_time_step(c, solver);
   log << fmt::format("rock: {} triangles, {} joints, {} boundary edges; stable step {:.4g} s, dt {:.4g} s, {} steps\n",
                      solver.triangle_count(), solver.joint_count(), model.topology.boundary_edges.size(), solver.stable_dt(), dt,
-                     static_cast<long long>(std::ceil(c.end_time / dt)));
+                     static_cast<long long>(std::ceil(c.time.end / dt)));
   RockOutputs out(c, model);
   out.snapshot();
   out.monitor();
   RockStepper stepper(c, solver, dt);
   RockRunOutputs outputs(c, solver, out, log);
-  run_loop(stepper, outputs, RunControl{c.end_time, c.max_steps, c.progress_interval}, log, options);
+  run_loop(stepper, outputs, RunControl{c.time.end, c.time.max_steps, c.output.progress_interval}, log, options);
 }
 
 }  // namespace blastsim::app

@@ -2,6 +2,7 @@
 //! \brief The driver's time loop and its progress lines.
 #include "run_loop.hpp"
 
+#include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/core/error.hpp"
 
 #include <fmt/format.h>
@@ -25,6 +26,20 @@ std::string progress_line(long long step, double t, double dt, double end, doubl
   const double frac = t / end;
   return fmt::format("step {:>8}  t = {:.4e} s  dt = {:.3e} s  {:5.1f} %  elapsed {}  left {}{}\n", step, t, dt,
                      100 * frac, hms(elapsed), hms(elapsed * (1 - frac) / frac), extra);
+}
+
+double checked_signal_rate(const cip::GasSolver& solver, const std::string& output_directory, double rate) {
+  if (!std::isfinite(rate))
+    throw InstabilityError(fmt::format("gas state invalid after step {} (t = {:.6e} s): {}; the last good output is in {}",
+                                       solver.steps(), solver.time(), solver.describe_invalid_cell(), output_directory));
+  return rate;
+}
+
+void check_fixed_dt_courant(double dt, double rate, double courant, const cip::GasSolver& solver) {
+  if (dt * rate > courant)
+    throw InputError(fmt::format("time.dt = {:g} s violates the Courant limit at step {} (t = {:.6e} s): Courant "
+                                 "number {:.4g} > gas.courant = {:g}; the largest stable dt now is {:.4g} s",
+                                 dt, solver.steps() + 1, solver.time(), dt * rate, courant, courant / rate));
 }
 
 void run_loop(Stepper& stepper, RunOutputs& outputs, const RunControl& control, std::ostream& log,

@@ -1,12 +1,19 @@
 //! \file run_loop.hpp
 //! \brief The driver's one time loop, for gas, rock and coupled cases alike: a Stepper (the solvers: the next
-//! stable dt, one step) and RunOutputs (what the run writes, and the times it must land on). Host code only.
+//! stable dt, one step) and RunOutputs (what the run writes, and the times it must land on); the three kinds of
+//! run (gas_run.cpp, rock_run.cpp, coupled_run.cpp). Host code only.
 #pragma once
 
 #include <iosfwd>
 #include <string>
 
+namespace blastsim::cip {
+class GasSolver;
+}
+
 namespace blastsim::app {
+
+struct Case;
 
 struct RunOptions {
   bool quiet = false;    //!< no progress lines
@@ -55,5 +62,17 @@ void run_loop(Stepper& stepper, RunOutputs& outputs, const RunControl& control, 
 
 //! One progress line: step, time, dt, fraction done, elapsed and estimated remaining wall time, `extra`.
 std::string progress_line(long long step, double t, double dt, double end, double elapsed, const std::string& extra);
+
+//! The gas's signal rate `rate` [1/s] for the next dt; an invalid state (+inf) stops the run with
+//! InstabilityError naming the quantity, step and place, before that state is written anywhere.
+double checked_signal_rate(const cip::GasSolver& solver, const std::string& output_directory, double rate);
+//! InputError when a fixed dt [s] violates the Courant limit at the gas's signal rate [1/s].
+void check_fixed_dt_courant(double dt, double rate, double courant, const cip::GasSolver& solver);
+
+//! Runs a case of each kind (the outputs in its output folder, progress and notes in `log`).
+void run_gas_case(const Case& c, std::ostream& log, const RunOptions& options = {});
+void run_rock_case(const Case& c, std::ostream& log, const RunOptions& options = {});
+//! A coupled case; with options.restart, from output.directory/checkpoint.bin.
+void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& options = {});
 
 }  // namespace blastsim::app

@@ -97,7 +97,7 @@ void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& s, const 
   write_grid(path, grid);
 }
 
-void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s, const JointGasFields& gas) {
+void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s, const ibm::CrackSegmentFields& gas) {
   const vtkIdType joints = static_cast<vtkIdType>(s.joint_nodes.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -135,7 +135,7 @@ void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s, cons
 void write_rock_vtu(const std::string& path, const fdem::RockSnapshot&, const RockCellFields&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
-void write_joints_vtu(const std::string& path, const fdem::RockSnapshot&, const JointGasFields&) {
+void write_joints_vtu(const std::string& path, const fdem::RockSnapshot&, const ibm::CrackSegmentFields&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
 #endif

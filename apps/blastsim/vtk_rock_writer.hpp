@@ -3,6 +3,7 @@
 #pragma once
 
 #include "blastsim/fdem/rock_types.hpp"
+#include "blastsim/ibm/crack_gas.hpp"
 
 #include <string>
 #include <vector>
@@ -20,15 +21,9 @@ struct RockCellFields {
 //! fields of `cells`) to `path`, atomically. Throws std::runtime_error without VTK.
 void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& snapshot, const RockCellFields& cells = {});
 
-//! The gas in the cracks, per joint (coupled runs with crack gas; empty arrays are left out).
-struct JointGasFields {
-  std::vector<double> aperture;      //!< [m] (residual aperture + opening) of broken joints, 0 elsewhere
-  std::vector<double> gas_pressure;  //!< [Pa] of the crack's own gas, 0 where it has none
-  std::vector<double> gas_mass;      //!< [kg/m] of the crack's own gas
-};
-
 //! Writes every joint as a line between the mid-points of its two faces' ends, with cell data damage and
-//! broken (1: a crack) and the fields of `gas`, to `path`, atomically.
-void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& snapshot, const JointGasFields& gas = {});
+//! broken (1: a crack) and the crack gas's aperture, gas_pressure and gas_mass (coupled runs with crack gas;
+//! empty arrays are left out), to `path`, atomically.
+void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& snapshot, const ibm::CrackSegmentFields& gas = {});
 
 }  // namespace blastsim::app

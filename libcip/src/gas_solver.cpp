@@ -3,6 +3,7 @@
 #include "blastsim/cip/gas_solver.hpp"
 
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/device_groups.hpp"
 
 #include "blastsim/core/error.hpp"
 #include "blastsim/cip/gas_step_kernels.hpp"
@@ -72,11 +73,8 @@ GasSolver::GasSolver(const GasGrid& grid, const GasMaterials& materials, const G
                      "carries one gas)");
   if (grid.nx < 3 || grid.ny < 3) throw InputError("gas grid needs at least 3 cells along x and y");
   if (!(grid.dx > 0) || !(grid.dy > 0)) throw InputError("gas grid spacing must be positive");
-  for (int a = 0; a < 2; ++a) {
-    const bool lo = options.boundaries.kind(2 * a) == BoundaryKind::periodic;
-    const bool hi = options.boundaries.kind(2 * a + 1) == BoundaryKind::periodic;
-    if (lo != hi) throw InputError("a periodic boundary must be set on both opposite sides");
-  }
+  if (options.boundaries.unpaired_periodic_axis() >= 0)
+    throw InputError("a periodic boundary must be set on both opposite sides");
   a_->resize(grid.padded_shape().size(), 2 * static_cast<index_t>(grid.nx + grid.ny), materials.two);
 }
 
@@ -379,7 +377,7 @@ std::string fmt_shape_mismatch(const std::string& path, int nx, int ny, int gx, 
 
 void GasSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("gas.shape", std::array<int, 2>{grid_.nx, grid_.ny});
-  detail::GasArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v) { w.array(name, v); });
+  detail::GasArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v) { write_array(w, name, v); });
   w.value("gas.time", time_);
   w.value("gas.steps", steps_);
 }
@@ -404,7 +402,7 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   if (shape[0] != grid_.nx || shape[1] != grid_.ny)
     throw InputError(fmt_shape_mismatch(r.path(), shape[0], shape[1], grid_.nx, grid_.ny));
   // Every array keeps the size the constructor gave it.
-  detail::GasArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, auto& v) { r.array(name, v, v.size()); });
+  detail::GasArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, auto& v) { read_array(r, name, v, v.size()); });
   time_ = r.value<double>("gas.time");
   steps_ = r.value<long long>("gas.steps");
   if (!std::isfinite(time_) || time_ < 0) r.fail("gas.time", "not a finite time >= 0");

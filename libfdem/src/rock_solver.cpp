@@ -3,6 +3,7 @@
 #include "blastsim/fdem/rock_solver.hpp"
 
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/device_groups.hpp"
 #include "blastsim/core/error.hpp"
 #include "blastsim/fdem/rock_step_kernels.hpp"
 #include "rock_storage.hpp"
@@ -600,7 +601,7 @@ RockSnapshot RockSolver::snapshot() const {
 
 void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.counts", std::array<int, 2>{triangles_, joints_});
-  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v, bool) { w.array(name, v); });
+  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, const auto& v, bool) { write_array(w, name, v); });
   w.value("rock.time", time_);
   w.value("rock.pressure_scale", pressure_scale_);
   w.value("rock.previous_dt", dt_prev_);
@@ -613,7 +614,7 @@ void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.contact.cells", std::array<int, 2>{grid_nx_, grid_ny_});
   w.value("rock.contact.buffer", buffer_);
   w.value("rock.contact.travel", travel_since_build_);
-  w.array("rock.probes.peak", a_->probe_peak);
+  write_array(w, "rock.probes.peak", a_->probe_peak);
 }
 
 namespace {
@@ -634,7 +635,7 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
                      std::to_string(counts[1]) + " joints, this case's mesh " + std::to_string(triangles_) + " and " +
                      std::to_string(joints_));
   detail::RockArrays::for_each_checkpoint_array(
-      *a_, [&](const std::string& name, auto& v, bool fixed) { r.array(name, v, fixed ? v.size() : 0); });
+      *a_, [&](const std::string& name, auto& v, bool fixed) { read_array(r, name, v, fixed ? v.size() : 0); });
   // Each scalar by name: finite, and non-negative but for the contact grid's origin.
   auto scalar = [&](const char* name) {
     const double v = r.value<double>(name);
@@ -660,7 +661,7 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   for (const int n : cells)
     if (n < min_cells || n > (1 << 20)) r.fail("rock.contact.cells", "contact grid size out of range");
   grid_nx_ = cells[0], grid_ny_ = cells[1];
-  r.array("rock.probes.peak", a_->probe_peak);  // set_probes() came first, as when it was written
+  read_array(r, "rock.probes.peak", a_->probe_peak);  // set_probes() came first, as when it was written
   if (a_->probe_peak.size() != static_cast<size_t>(probes_))
     r.fail("rock.probes.peak", "holds " + std::to_string(a_->probe_peak.size()) + " probes, this case has " +
                                    std::to_string(probes_));

@@ -177,12 +177,12 @@ void Charges::add_diagnostics(const CouplingContext& /*ctx*/, CouplingDiagnostic
 }
 
 void Charges::write_checkpoint(CheckpointWriter& w) const {
-  w.array("ibm.charge.ledger", a_->ledger.burn);
+  write_array(w, "ibm.charge.ledger", a_->ledger.burn);
   w.value("ibm.charge.burnt_until", burnt_until_);
 }
 
 void Charges::read_checkpoint(CheckpointReader& r) {
-  r.array("ibm.charge.ledger", a_->ledger.burn, a_->ledger.burn.size());
+  read_array(r, "ibm.charge.ledger", a_->ledger.burn, a_->ledger.burn.size());
   burnt_until_ = r.value<double>("ibm.charge.burnt_until");
   if (std::isnan(burnt_until_)) r.fail("ibm.charge.burnt_until", "not a number");
 }

@@ -213,6 +213,20 @@ std::vector<ChannelPrimitive> CrackGas::primitives() const { return to_host(a_->
 std::vector<std::uint8_t> CrackGas::kinds() const { return to_host(a_->segments.kind); }
 std::vector<double> CrackGas::apertures() const { return to_host(a_->geometry.aperture); }
 std::vector<double> CrackGas::volumes() const { return to_host(a_->segments.volume); }
+CrackSegmentFields CrackGas::segment_fields() const {
+  const std::vector<std::uint8_t> kind = kinds();
+  const std::vector<double> w = apertures();
+  const std::vector<ChannelPrimitive> p = primitives();
+  const std::vector<ChannelConserved> m = gas();
+  const std::size_t n = kind.size();
+  CrackSegmentFields f{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  for (std::size_t j = 0; j < n; ++j) {
+    if (kind[j] != kSegmentNone) f.aperture[j] = w[j];
+    if (kind[j] == kSegmentGas) f.gas_pressure[j] = p[j].p, f.gas_mass[j] = m[j].m;
+  }
+  return f;
+}
+
 std::vector<ChannelConserved> CrackGas::deposits() const { return to_host(a_->deposits.deposit); }
 void CrackGas::clear_deposits() {
   fill_device("crack.clear_deposits", a_->deposits.deposit, ChannelConserved{0, 0, 0, 0, 0});
@@ -221,8 +235,8 @@ void CrackGas::clear_deposits() {
 //! The checkpoint holds the segments' state and geometry (the graph comes from the mesh; the ends and the
 //! mouths are recomputed every step).
 void CrackGas::write_checkpoint(CheckpointWriter& w) const {
-  a_->segments.for_each([&](const char* name, const auto& v) { w.array(std::string("crack.") + name, v); });
-  a_->geometry.for_each([&](const char* name, const auto& v) { w.array(std::string("crack.") + name, v); });
+  a_->segments.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.") + name, v); });
+  a_->geometry.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.") + name, v); });
 }
 
 void CrackGas::check_kinds(const CheckpointReader& r) const {
@@ -232,8 +246,8 @@ void CrackGas::check_kinds(const CheckpointReader& r) const {
 
 void CrackGas::read_checkpoint(CheckpointReader& r) {
   const auto n = static_cast<std::size_t>(segments_);
-  a_->segments.for_each([&](const char* name, auto& v) { r.array(std::string("crack.") + name, v, n); });
-  a_->geometry.for_each([&](const char* name, auto& v) { r.array(std::string("crack.") + name, v, n); });
+  a_->segments.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
+  a_->geometry.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   check_kinds(r);
   update_primitives();
 }

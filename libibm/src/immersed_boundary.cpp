@@ -77,11 +77,11 @@ void ImmersedBoundary::add_diagnostics(const CouplingContext& /*ctx*/, CouplingD
 }
 
 void ImmersedBoundary::write_checkpoint(CheckpointWriter& w) const {
-  w.array("ibm.transitions", a_->ledger.transitions);
+  write_array(w, "ibm.transitions", a_->ledger.transitions);
 }
 
 void ImmersedBoundary::read_checkpoint(CheckpointReader& r) {
-  r.array("ibm.transitions", a_->ledger.transitions, a_->ledger.transitions.size());
+  read_array(r, "ibm.transitions", a_->ledger.transitions, a_->ledger.transitions.size());
 }
 
 }  // namespace blastsim::ibm

@@ -3,9 +3,9 @@
 //! input gives one clear line naming the key; a shrunk bench fires each charge at its time, and a restart from a
 //! checkpoint taken before a charge fired ends byte for byte like the uninterrupted run.
 #include "blastsim/core/error.hpp"
-#include "case_input.hpp"
+#include "case.hpp"
 #include "catch.hpp"
-#include "coupled_run.hpp"
+#include "run_loop.hpp"
 #include "temp_files.hpp"
 
 #include <cmath>
@@ -23,8 +23,8 @@ using blastsim::testing::fresh_dir;
 namespace {
 const std::string bench = std::string(BLASTSIM_EXAMPLES_DIR) + "/bench_blast/bench_blast.toml";
 
-app::CoupledCaseConfig read(const std::vector<std::string>& overrides) {
-  return app::read_coupled_case(app::load_input(bench, overrides));
+app::Case read(const std::vector<std::string>& overrides) {
+  return app::read_case(app::load_input(bench, overrides));
 }
 
 //! The bench shrunk for a test: 6 mm cells, 12 mm triangles, 30 us; the charges at 0, 12 and 25 us.
@@ -38,10 +38,10 @@ std::vector<std::string> small_bench(const fs::path& out) {
 }  // namespace
 
 TEST_CASE("Bad charges give one clear error naming the key", "[app][charges][bad]") {
-  const app::CoupledCaseConfig c = read({});
-  REQUIRE(c.charges.size() == 3);
-  CHECK(c.rock.mesh.holes.size() == 3);
-  CHECK(c.rock.analysis.holes.size() == 3);
+  const app::Case c = read({});
+  REQUIRE(c.coupling.charges.size() == 3);
+  CHECK(c.rock.model.mesh.holes.size() == 3);
+  CHECK(c.analysis.holes.size() == 3);
   CHECK_THROWS_WITH(read({"charge.1.radius=0.012"}), Catch::Contains("charge.1.radius") && Catch::Contains("larger than its hole"));
   CHECK_THROWS_WITH(read({"charge.2.center=[0.475, 0.2]"}), Catch::Contains("charge.2") && Catch::Contains("not inside the rock"));
   CHECK_THROWS_WITH(read({"charge.1.center=[0.135, 0.2]"}), Catch::Contains("charge.1") && Catch::Contains("overlaps that of charge.0"));
@@ -59,7 +59,7 @@ TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a
           "[long][app][charges][restart]") {
   const fs::path a = fresh_dir("bench_a"), b = fresh_dir("bench_b");
   std::ostringstream log;
-  const app::CoupledCaseConfig ca = read(small_bench(a));
+  const app::Case ca = read(small_bench(a));
   app::run_coupled_case(ca, log);
   const auto cols = csv_columns(a / "charges.csv");
   const std::vector<double>& t = cols.at("time_s");
@@ -67,7 +67,7 @@ TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a
   for (int k = 0; k < 3; ++k) {
     const std::vector<double>& p = cols.at("charge" + std::to_string(k) + "_pressure_Pa");
     const std::vector<double>& e = cols.at("charge" + std::to_string(k) + "_energy_J_per_m");
-    const double t0 = ca.charges[k].initiation_time;
+    const double t0 = ca.coupling.charges[k].initiation_time;
     double before = 0, after = 0, released_before = 0;
     for (size_t r = 0; r < t.size(); ++r) {
       if (t[r] < t0) {

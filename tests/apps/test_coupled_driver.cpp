@@ -2,9 +2,9 @@
 //! \brief Driver on coupled gas-rock cases: the bundled single-hole file (small) runs, writes the gas, rock and
 //! coupling files, closes its energy budget; bad coupled input gives one clear error.
 #include "blastsim/core/error.hpp"
-#include "case_input.hpp"
+#include "case.hpp"
 #include "catch.hpp"
-#include "coupled_run.hpp"
+#include "run_loop.hpp"
 #include "temp_files.hpp"
 
 #include <cmath>
@@ -58,12 +58,12 @@ std::map<std::string, double> last_row(const fs::path& p) {
 
 TEST_CASE("Driver runs a coupled case: gas, rock and coupling files, and the energy budget closes", "[app][coupled]") {
   const fs::path out = fresh_dir("coupled");
-  const app::CoupledCaseConfig c = app::read_coupled_case(app::load_input(example, small_case(out)));
+  const app::Case c = app::read_case(app::load_input(example, small_case(out)));
   std::ostringstream log;
   app::run_coupled_case(c, log);
   INFO(log.str());
   for (const char* f : {"coupling_series.csv", "gas_totals.csv", "rock_series.csv", "point_hole.csv"}) CHECK(fs::exists(out / f));
-  if (c.gas.vtk) {
+  if (c.output.vtk) {
     // Snapshots at 0, 15 and 30 us (output.interval) and at 20 us (the example's output.times).
     for (const char* f : {"gas.pvd", "rock.pvd", "joints.pvd", "gas_000003.vti", "rock_000003.vtu", "joints_000003.vtu"})
       CHECK(fs::exists(out / f));
@@ -110,7 +110,7 @@ TEST_CASE("Driver runs a coupled case: gas, rock and coupling files, and the ene
 
 TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupled][bad]") {
   auto read = [](const std::vector<std::string>& overrides) {
-    return app::read_coupled_case(app::load_input(example, overrides));
+    return app::read_case(app::load_input(example, overrides));
   };
   CHECK(app::case_kind(app::load_input(example, {})) == app::CaseKind::coupled);
   CHECK_THROWS_WITH(read({"rock.pressure.0.boundary=\"hole\"", "rock.pressure.0.pressure=1e6"}),
@@ -160,7 +160,7 @@ TEST_CASE("A coupled run killed and restarted from its checkpoint ends byte for 
       o.push_back("output.interval=2e-5");  // snapshots, and checkpoints, at 0, 20 and 40 us
       o.push_back(crack_gas ? "crack_gas.enabled=true" : "crack_gas.enabled=false");
       o.insert(o.end(), extra.begin(), extra.end());
-      return app::read_coupled_case(app::load_input(example, o));
+      return app::read_case(app::load_input(example, o));
     };
     std::ostringstream log;
     app::run_coupled_case(config(a, {}), log);
@@ -224,7 +224,7 @@ TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy
     const char* tag = crack_gas ? "crack gas on, face forces" : "paper's scheme";
     const fs::path out = fresh_dir(crack_gas ? "blast_crack_gas" : "blast");
     const double end = 4e-4;
-    const app::CoupledCaseConfig c = app::read_coupled_case(toml::parse(
+    const app::Case c = app::read_case(toml::parse(
         small_blast_text(out, end) + (crack_gas ? "[crack_gas]\nenabled = true\n[coupling]\ngas_load = \"faces\"\n" : "")));
     std::ostringstream log;
     app::run_coupled_case(c, log);

@@ -2,10 +2,10 @@
 //! \brief The driver end to end: a gas case writes VTK image data that VTK reads back, probe CSVs with the
 //! documented columns, and a clear non-zero exit with no output for bad input.
 #include "blastsim/core/error.hpp"
-#include "case_input.hpp"
+#include "case.hpp"
 #include "catch.hpp"
 #include "temp_files.hpp"
-#include "gas_run.hpp"
+#include "run_loop.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -47,7 +47,7 @@ std::string case_text(const fs::path& out, bool vtk) {
 
 TEST_CASE("Driver runs a gas case: probes with the documented columns, VTK that reads back", "[app][driver]") {
   const fs::path out = fresh_dir("driver");
-  const app::CaseConfig c = app::read_case(toml::parse(case_text(out, false)));
+  const app::Case c = app::read_case(toml::parse(case_text(out, false)));
   std::ostringstream log;
   app::run_gas_case(c, log);
   CHECK(first_line(out / "line_axis_000.csv") == "x,y,rho,u,v,p,e");
@@ -69,7 +69,7 @@ TEST_CASE("Driver runs a gas case: probes with the documented columns, VTK that 
 #if defined(BLASTSIM_HAVE_VTK)
 TEST_CASE("Driver VTK output opens as image data with the gas fields", "[app][driver][vtk]") {
   const fs::path out = fresh_dir("vtk");
-  const app::CaseConfig c = app::read_case(toml::parse(case_text(out, true)));
+  const app::Case c = app::read_case(toml::parse(case_text(out, true)));
   std::ostringstream log;
   app::run_gas_case(c, log);
   CHECK(fs::exists(out / "gas.pvd"));
@@ -123,7 +123,7 @@ TEST_CASE("A fixed dt above the Courant limit stops with a clear message", "[app
   const fs::path out = fresh_dir("cfl");
   toml::table t = toml::parse(case_text(out, false));
   app::apply_override(t, "time.dt=1e-5");
-  const app::CaseConfig c = app::read_case(t);
+  const app::Case c = app::read_case(t);
   std::ostringstream log;
   try {
     app::run_gas_case(c, log);
@@ -148,7 +148,7 @@ TEST_CASE("An unstable run stops with the quantity, step and place, and its writ
     << "[[gas.region]]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.2, 0.00375]\ndensity = 163.0\n"
     << "internal_energy = 4.29e5\n[time]\nend = 5.0e-4\n"
     << "[output]\ndirectory = \"" << out.string() << "\"\nvtk = false\n";
-  const app::CaseConfig c = app::read_case(toml::parse(s.str()));
+  const app::Case c = app::read_case(toml::parse(s.str()));
   std::ostringstream log;
   std::string message;
   try {

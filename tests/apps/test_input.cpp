@@ -1,7 +1,7 @@
 //! \file test_input.cpp
 //! \brief Driver input: every kind of bad input gives one InputError naming the key, value and allowed range.
 #include "blastsim/core/error.hpp"
-#include "case_input.hpp"
+#include "case.hpp"
 #include "catch.hpp"
 
 #include <string>
@@ -34,7 +34,7 @@ internal_energy = 4.29e5
 end = 1.0e-4
 )";
 
-app::CaseConfig read(const std::string& text, const std::vector<std::string>& overrides = {}) {
+app::Case read(const std::string& text, const std::vector<std::string>& overrides = {}) {
   toml::table t = toml::parse(text);
   for (const std::string& o : overrides) app::apply_override(t, o);
   return app::read_case(t);
@@ -55,38 +55,38 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 }  // namespace
 
 TEST_CASE("A valid case is read with its defaults and echoed with units", "[app][input]") {
-  const app::CaseConfig c = read(kValid);
-  CHECK(c.grid.nx == 20);
-  CHECK_THAT(c.grid.dx, WithinRel(0.05, 1e-14));
-  CHECK(c.courant == 0.1);
-  CHECK(c.solver.transport == cip::Transport::conservative);
-  CHECK(c.solver.viscosity.linear == 0.5);  // the conservative transport's coefficients
-  CHECK(c.solver.viscosity.quadratic == 1.0);
-  const app::CaseConfig paper = read(kValid, {"gas.transport=paper"});
-  CHECK(paper.solver.transport == cip::Transport::paper);
-  CHECK(paper.solver.viscosity.linear == 1.0);  // the paper's transport's coefficients
-  CHECK(paper.solver.viscosity.quadratic == 2.0);
-  CHECK_THAT(c.ambient.internal_energy, WithinRel(1.0e5 / (0.4 * 1.2), 1e-14));  // from the pressure
-  CHECK(c.regions.size() == 1);
-  CHECK(c.initial_state(0.5, 0.25).density == 163.0);
-  CHECK(c.initial_state(0.9, 0.25).density == 1.2);
+  const app::Case c = read(kValid);
+  CHECK(c.gas.grid.nx == 20);
+  CHECK_THAT(c.gas.grid.dx, WithinRel(0.05, 1e-14));
+  CHECK(c.gas.courant == 0.1);
+  CHECK(c.gas.solver.transport == cip::Transport::conservative);
+  CHECK(c.gas.solver.viscosity.linear == 0.5);  // the conservative transport's coefficients
+  CHECK(c.gas.solver.viscosity.quadratic == 1.0);
+  const app::Case paper = read(kValid, {"gas.transport=paper"});
+  CHECK(paper.gas.solver.transport == cip::Transport::paper);
+  CHECK(paper.gas.solver.viscosity.linear == 1.0);  // the paper's transport's coefficients
+  CHECK(paper.gas.solver.viscosity.quadratic == 2.0);
+  CHECK_THAT(c.gas.ambient.internal_energy, WithinRel(1.0e5 / (0.4 * 1.2), 1e-14));  // from the pressure
+  CHECK(c.gas.regions.size() == 1);
+  CHECK(c.gas.initial_state(0.5, 0.25).density == 163.0);
+  CHECK(c.gas.initial_state(0.9, 0.25).density == 1.2);
   bool echoed_units = false, echoed_default = false;
-  for (const std::string& l : c.echo) {
-    echoed_units |= l == "domain.x_max = 1 m";
-    echoed_default |= contains(l, "gas.courant = 0.1") && contains(l, "(default)");
+  for (const app::EchoLine& e : c.echo) {
+    echoed_units |= e.text == "domain.x_max = 1 m" && e.key == "domain.x_max";
+    echoed_default |= contains(e.text, "gas.courant = 0.1") && contains(e.text, "(default)");
   }
   CHECK(echoed_units);
   CHECK(echoed_default);
 }
 
 TEST_CASE("Command-line overrides replace values, reach array entries and create keys", "[app][input]") {
-  const app::CaseConfig c =
+  const app::Case c =
       read(kValid, {"domain.nx=40", "gas.region.0.radius=0.2", "gas.boundary.left=wall", "time.dt=1e-7"});
-  CHECK(c.grid.nx == 40);
-  CHECK(c.regions[0].radius == 0.2);
-  CHECK(c.solver.boundaries.kind(cip::left) == cip::BoundaryKind::wall);
-  REQUIRE(c.fixed_dt);
-  CHECK(*c.fixed_dt == 1e-7);
+  CHECK(c.gas.grid.nx == 40);
+  CHECK(c.gas.regions[0].where.radius == 0.2);
+  CHECK(c.gas.solver.boundaries.kind(cip::left) == cip::BoundaryKind::wall);
+  REQUIRE(c.time.dt);
+  CHECK(*c.time.dt == 1e-7);
   CHECK(contains(error_of({"gas.region.3.radius=1"}), "gas.region has 1 entries"));
   CHECK(contains(error_of({"novalue"}), "section.key=value"));
 }
@@ -142,18 +142,18 @@ TEST_CASE("Bad input file: a missing file is named", "[app][input][bad]") {
 TEST_CASE("Detonation products: an explosive preset or JWL parameters, products regions, and their errors",
           "[app][input][explosive]") {
   // A preset and a products region: two materials, the region's energy from the products' equation of state.
-  const app::CaseConfig c = read(kValid, {"gas.explosive.preset=\"ANFO\"", "gas.region.0.material=\"products\"",
+  const app::Case c = read(kValid, {"gas.explosive.preset=\"ANFO\"", "gas.region.0.material=\"products\"",
                                           "gas.region.0.density=800.0", "gas.region.0.internal_energy=2.0e6"});
-  REQUIRE(c.explosive.has_value());
-  CHECK(c.materials().two);
-  CHECK(c.explosive->jwl.rho0 == 800.0);
-  CHECK(c.initial_state(0.5, 0.25).products_fraction == 1.0);
-  CHECK(c.initial_state(0.05, 0.05).products_fraction == 0.0);
+  REQUIRE(c.gas.explosive.has_value());
+  CHECK(c.gas.materials().two);
+  CHECK(c.gas.explosive->jwl.rho0 == 800.0);
+  CHECK(c.gas.initial_state(0.5, 0.25).products_fraction == 1.0);
+  CHECK(c.gas.initial_state(0.05, 0.05).products_fraction == 0.0);
   // The seven parameters instead of a preset.
-  const app::CaseConfig u = read(kValid, {"gas.explosive.A=3.712e11", "gas.explosive.B=3.231e9", "gas.explosive.C=1.045e9",
+  const app::Case u = read(kValid, {"gas.explosive.A=3.712e11", "gas.explosive.B=3.231e9", "gas.explosive.C=1.045e9",
                                           "gas.explosive.R1=4.15", "gas.explosive.R2=0.95", "gas.explosive.w=0.3",
                                           "gas.explosive.rho0=1630.0", "gas.region.0.material=\"products\""});
-  CHECK(u.explosive->jwl.R1 == 4.15);
+  CHECK(u.gas.explosive->jwl.R1 == 4.15);
   // Errors name the key: a products region without an explosive, R1 <= R2, an unknown preset, both forms.
   CHECK(contains(error_of({"gas.region.0.material=\"products\""}), "gas.region.0.material = \"products\" needs a "
                                                                    "[gas.explosive]"));

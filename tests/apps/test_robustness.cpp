@@ -207,13 +207,13 @@ TEST_CASE("Robustness: damaged and forged checkpoints are refused with exit 2, n
   }
   {  // a snapshot index of -7, and a CSV size beyond the file (which would pad it with NUL bytes)
     std::vector<char> bad = good;
-    const double minus_seven = -7.0;
-    std::memcpy(&bad[record_data(bad, "out.gas.counters") + 8], &minus_seven, 8);
+    const int minus_seven = -7;
+    std::memcpy(&bad[record_data(bad, "out.gas.snapshot_index")], &minus_seven, sizeof minus_seven);
     reseal(bad);
     write_bytes(ckpt, bad);
     Run r = run_driver(input, {"--restart"}, "ckpt_index");
     CHECK(r.status == 2);
-    CHECK(r.err.find("out.gas.counters") != std::string::npos);
+    CHECK(r.err.find("out.gas.snapshot_index") != std::string::npos);
     bad = good;
     std::uint64_t size = 0;
     const std::size_t at = record_data(bad, "out.coupling.csv_size");

@@ -2,10 +2,10 @@
 //! \brief Driver on rock-only cases: the bundled Brazilian disc runs and writes .vtu that VTK reads back; the bundled
 //! uniaxial compression reaches the Mohr-Coulomb strength (F8 through the driver); bad rock input.
 #include "blastsim/core/error.hpp"
-#include "case_input.hpp"
+#include "case.hpp"
 #include "catch.hpp"
 #include "temp_files.hpp"
-#include "rock_run.hpp"
+#include "run_loop.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -55,9 +55,9 @@ std::vector<double> csv_column(const fs::path& file, const std::string& name) {
 TEST_CASE("Driver runs the bundled uniaxial compression: the platen force peaks at the Mohr-Coulomb strength",
           "[app][rock][F8]") {
   const fs::path out = fresh_dir("uniaxial");
-  const app::RockCaseConfig c = app::read_rock_case(
+  const app::Case c = app::read_case(
       app::load_input(uniaxial, {"output.vtk=false", "output.directory=\"" + out.string() + "\""}));
-  REQUIRE(c.mesh.joint_lines.size() == 1);
+  REQUIRE(c.rock.model.mesh.joint_lines.size() == 1);
   std::ostringstream log;
   app::run_rock_case(c, log);
   INFO(log.str());
@@ -66,10 +66,10 @@ TEST_CASE("Driver runs the bundled uniaxial compression: the platen force peaks 
   const std::vector<double> bottom = csv_column(out / "rock_series.csv", "velocity1_reaction_y_N_per_m");
   const std::vector<double> top = csv_column(out / "rock_series.csv", "velocity0_reaction_y_N_per_m");
   REQUIRE(bottom.size() > 100);
-  const double width = c.mesh.max[0] - c.mesh.min[0];
+  const double width = c.rock.model.mesh.max[0] - c.rock.model.mesh.min[0];
   const double peak = *std::max_element(bottom.begin(), bottom.end()) / width;
-  const double phi = c.material.friction_angle;
-  const double expected = 2 * c.material.cohesion * std::cos(phi) / (1 - std::sin(phi));
+  const double phi = c.rock.model.material.friction_angle;
+  const double expected = 2 * c.rock.model.material.cohesion * std::cos(phi) / (1 - std::sin(phi));
   std::printf("Uniaxial example: peak platen stress %.2f MPa vs %.2f MPa (%+.1f %%)\n", peak / 1e6, expected / 1e6,
               100 * (peak / expected - 1));
   CHECK(std::fabs(peak / expected - 1) < 0.20);
@@ -83,7 +83,7 @@ TEST_CASE("Driver runs the bundled uniaxial compression: the platen force peaks 
 TEST_CASE("Driver runs the bundled Brazilian disc (coarse) and its .vtu read back", "[app][rock][vtk]") {
   const fs::path out = fresh_dir("brazilian");
   // The bundled file with a coarser mesh, run past the peak load (about 0.5 ms).
-  const app::RockCaseConfig c = app::read_rock_case(app::load_input(
+  const app::Case c = app::read_case(app::load_input(
       example, {"rock.mesh.element_size=0.008", "time.end=7e-4", "output.interval=3.5e-4",
                 "output.directory=\"" + out.string() + "\""}));
   std::ostringstream log;
@@ -119,7 +119,7 @@ TEST_CASE("Driver runs the bundled Brazilian disc (coarse) and its .vtu read bac
 
 TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][bad]") {
   auto read = [](const std::vector<std::string>& overrides) {
-    return app::read_rock_case(app::load_input(example, overrides));
+    return app::read_case(app::load_input(example, overrides));
   };
   CHECK_THROWS_WITH(read({"rock.youngs_modulus=-1.0"}), Catch::Contains("rock.youngs_modulus"));
   CHECK_THROWS_WITH(read({"rock.mesh.shape=\"hexagon\""}), Catch::Contains("rock.mesh.shape"));
@@ -128,7 +128,7 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   CHECK_THROWS_WITH(read({"rock.velocity.0.components=\"z\""}), Catch::Contains("rock.velocity.0.components"));
   // Joint lines: ends inside the rock, longer than half an element, on a Gmsh shape that takes them.
   auto read_uniaxial = [](const std::vector<std::string>& overrides) {
-    return app::read_rock_case(app::load_input(uniaxial, overrides));
+    return app::read_case(app::load_input(uniaxial, overrides));
   };
   CHECK_THROWS_WITH(read_uniaxial({"rock.mesh.joint_line.0.to=[0.06, 0.09]"}),
                     Catch::Contains("rock.mesh.joint_line.0") && Catch::Contains("outside the rock"));
@@ -145,11 +145,11 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   CHECK(app::case_kind(both) == app::CaseKind::coupled);
   // Run-time checks: unknown boundary group, a fixed dt above the stable step.
   std::ostringstream log;
-  app::RockCaseConfig c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh_dir("bad_rock").string() + "\""});
-  c.pressures.push_back({"nowhere", 1e6});
+  app::Case c = read({"time.end=1e-6", "output.vtk=false", "output.directory=\"" + fresh_dir("bad_rock").string() + "\""});
+  c.rock.model.pressures.push_back({"rock.pressure.0", "nowhere", 1e6});
   CHECK_THROWS_WITH(app::run_rock_case(c, log), Catch::Contains("no such boundary group"));
-  c.pressures.clear();
-  c.fixed_dt = 1e-3;
+  c.rock.model.pressures.clear();
+  c.time.dt = 1e-3;
   CHECK_THROWS_WITH(app::run_rock_case(c, log), Catch::Contains("time.dt"));
 }
 
@@ -177,13 +177,14 @@ TEST_CASE("Driver: a bar pushed at one end radiates rho c_p v0^2 H through a vis
                           "[time]\nend = 3.0e-4\n"
                           "[output]\nvtk = false\nmonitor_interval = 5\n";
   const fs::path out = dir / "out";
-  app::RockCaseConfig c = app::read_rock_case(app::load_input(input.string(), {"output.directory=\"" + out.string() + "\""}));
-  REQUIRE(c.viscous_boundaries == std::vector<std::string>{"right"});
+  app::Case c = app::read_case(app::load_input(input.string(), {"output.directory=\"" + out.string() + "\""}));
+  REQUIRE(c.rock.model.viscous_boundaries.size() == 1);
+  REQUIRE(c.rock.model.viscous_boundaries[0].boundary == "right");
   std::ostringstream log;
   app::run_rock_case(c, log);
   const std::vector<double> t = csv_column(out / "rock_series.csv", "time_s");
   const std::vector<double> radiated = csv_column(out / "rock_series.csv", "radiated_J_per_m");
-  const double cp = c.material.p_wave_speed();
+  const double cp = c.rock.model.material.p_wave_speed();
   // Mean power over [1.5 L / c_p, the end], from the rows nearest those times.
   auto row_at = [&](double time) {
     size_t k = 0;
@@ -193,12 +194,12 @@ TEST_CASE("Driver: a bar pushed at one end radiates rho c_p v0^2 H through a vis
   const size_t a = row_at(1.5 * L / cp), b = t.size() - 1;
   REQUIRE(b > a);
   const double power = (radiated[b] - radiated[a]) / (t[b] - t[a]);
-  const double expected = c.material.density * cp * v0 * v0 * H;
+  const double expected = c.rock.model.material.density * cp * v0 * v0 * H;
   std::printf("F9 through the driver: radiated power %.4e W/m vs rho c_p v0^2 H = %.4e W/m (%+.2f %%)\n", power,
               expected, 100 * (power / expected - 1));
   CHECK(std::fabs(power / expected - 1) < 0.05);
   // An unknown group is refused naming the table.
-  c.viscous_boundaries = {"back"};
+  c.rock.model.viscous_boundaries[0].boundary = "back";
   CHECK_THROWS_WITH(app::run_rock_case(c, log),
                     Catch::Contains("rock.viscous_boundary.0.boundary") && Catch::Contains("no such boundary group"));
 }

@@ -13,6 +13,7 @@
 #include <cassert>
 #include <chrono>
 #include <climits>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
@@ -54,6 +55,30 @@ class KernelProfile {
   void enable(bool on) { enabled_ = on; }
   void reset() { entries_.clear(); }
   const std::map<std::string, Entry>& entries() const { return entries_; }
+  //! The table of the labels' wall times, launches and shares, largest first, then the sum per library (the
+  //! label's prefix before its first '.').
+  std::string report() const {
+    double total = 0;
+    std::map<std::string, double> group;
+    for (const auto& [label, e] : entries_) total += e.seconds, group[label.substr(0, label.find('.'))] += e.seconds;
+    std::vector<std::pair<std::string, Entry>> sorted(entries_.begin(), entries_.end());
+    std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second.seconds > b.second.seconds; });
+    char line[256];
+    std::snprintf(line, sizeof line, "kernel profile (each launch synchronised; %.3f s in kernels):\n", total);
+    std::string out = line;
+    std::snprintf(line, sizeof line, "  %-32s %10s %12s %12s %7s\n", "kernel", "launches", "total s", "ms/launch", "share");
+    out += line;
+    for (const auto& [label, e] : sorted) {
+      std::snprintf(line, sizeof line, "  %-32s %10ld %12.4f %12.4f %6.1f%%\n", label.c_str(), e.launches, e.seconds,
+                    1e3 * e.seconds / e.launches, 100 * e.seconds / total);
+      out += line;
+    }
+    for (const auto& [name, seconds] : group) {
+      std::snprintf(line, sizeof line, "  %-32s %36.4f %6.1f%%\n", (name + ".*").c_str(), seconds, 100 * seconds / total);
+      out += line;
+    }
+    return out;
+  }
   //! Runs `launch`, and when enabled adds its synchronised wall time to `label`.
   template <class Launch>
   void time(const char* label, Launch&& launch) {

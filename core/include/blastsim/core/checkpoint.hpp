@@ -5,12 +5,14 @@
 //! rename); a reader refuses a file whose checksum, structure, record types or sizes do not match, and
 //! records it does not know (finish()).
 //!
+//! Host code only: the solvers write their device arrays through write_array() / read_array() of
+//! core/device_groups.hpp, so a file that only passes a checkpoint to the solvers needs no backend.
+//!
 //! Layout (little-endian as written by the machine): "BLSTCKP2", u32 version; then per record u64 name
 //! length, the name, u64 element size, u64 count, the data; then "BLSTEND2", u64 record count, u32 CRC-32 of
 //! all bytes before the trailer.
 #pragma once
 
-#include "blastsim/core/backend.hpp"
 #include "blastsim/core/error.hpp"
 
 #include <zlib.h>
@@ -47,7 +49,7 @@ inline std::uint32_t crc32_of(std::uint32_t crc, const char* data, std::uint64_t
 }
 }  // namespace detail
 
-//! Writes a checkpoint: value(), host_array(), array() and text() add records; commit() closes the file with
+//! Writes a checkpoint: value(), host_array() and text() add records (write_array() a device array); commit() closes the file with
 //! its trailer and renames it into place.
 class CheckpointWriter {
  public:
@@ -71,10 +73,6 @@ class CheckpointWriter {
   template <class T>
   void value(const std::string& name, const T& v) {
     host_array(name, std::vector<T>{v});
-  }
-  template <class T>
-  void array(const std::string& name, const DeviceVector<T>& v) {
-    host_array(name, to_host(v));
   }
   void text(const std::string& name, const std::string& s) { host_array(name, std::vector<char>(s.begin(), s.end())); }
   //! Appends the trailer, flushes, closes, checks and renames the temporary file over the checkpoint.
@@ -104,8 +102,8 @@ class CheckpointWriter {
 };
 
 //! Reads a checkpoint: the constructor checks the header, the trailer and the checksum and indexes the
-//! records; host_array(), value(), array() and text() look records up by name and check their element size
-//! (and array() the count); finish() refuses records that nothing read. Every problem is an InputError
+//! records; host_array(), value() and text() (and read_array() for a device array) look records up by name and
+//! check their element size (and read_array() the count); finish() refuses records that nothing read. Every problem is an InputError
 //! naming the file and the record.
 class CheckpointReader {
  public:
@@ -195,14 +193,14 @@ class CheckpointReader {
     if (v.size() != 1) fail(name, "holds " + std::to_string(v.size()) + " values, expected one");
     return v[0];
   }
-  //! Fills a device vector; `expected` (when not 0) is the size it must have.
+  //! host_array(), and InputError unless it holds `expected` values (when not 0).
   template <class T>
-  void array(const std::string& name, DeviceVector<T>& v, std::size_t expected = 0) {
-    const std::vector<T> h = host_array<T>(name);
+  std::vector<T> host_array(const std::string& name, std::size_t expected) {
+    std::vector<T> h = host_array<T>(name);
     if (expected != 0 && h.size() != expected)
       fail(name, "holds " + std::to_string(h.size()) + " values, this case needs " + std::to_string(expected) +
                      " (a checkpoint of another case?)");
-    copy_from_host(v, h);
+    return h;
   }
   std::string text(const std::string& name) {
     const std::vector<char> c = host_array<char>(name);

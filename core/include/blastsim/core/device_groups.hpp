@@ -8,11 +8,28 @@
 //! - BLASTSIM_STATE_STORAGE(Group, LIST): view<A>() gives `Group<A>` (default read_write), read() the read view;
 //! - BLASTSIM_FIELD_STORAGE(Group, LIST): the same for Field2D views on a padded grid shape, view<A>(shape) and
 //!   read(shape).
-//! Every storage has for_each(fn): fn(name, array) for each entry, in list order.
+//! Every storage has for_each(fn): fn(name, array) for each entry, in list order. write_array() and
+//! read_array() put one array in a checkpoint and back.
 #pragma once
 
 #include "blastsim/core/access.hpp"
 #include "blastsim/core/backend.hpp"
+#include "blastsim/core/checkpoint.hpp"
+
+#include <string>
+
+namespace blastsim {
+//! A device array as the checkpoint record `name`.
+template <class T>
+void write_array(CheckpointWriter& w, const std::string& name, const DeviceVector<T>& v) {
+  w.host_array(name, to_host(v));
+}
+//! Fills a device array from the checkpoint record `name`; `expected` (when not 0) is the size it must have.
+template <class T>
+void read_array(CheckpointReader& r, const std::string& name, DeviceVector<T>& v, std::size_t expected = 0) {
+  copy_from_host(v, r.host_array<T>(name, expected));
+}
+}  // namespace blastsim
 
 #define BLASTSIM_STORAGE_MEMBER(type, name, comment) DeviceVector<type> name;
 #define BLASTSIM_STORAGE_POINTER(type, name, comment) device_ptr(name),

@@ -41,6 +41,12 @@ struct BoundaryConditions {
   BLAST_HD bool periodic(int axis) const {
     return kind(2 * axis) == BoundaryKind::periodic && kind(2 * axis + 1) == BoundaryKind::periodic;
   }
+  //! The first axis (0: x, 1: y) periodic on one side only, or -1: a periodic side needs its opposite one.
+  int unpaired_periodic_axis() const {
+    for (int a = 0; a < 2; ++a)
+      if ((kind(2 * a) == BoundaryKind::periodic) != (kind(2 * a + 1) == BoundaryKind::periodic)) return a;
+    return -1;
+  }
 };
 
 //! bc.kind(s), kept for the kernels that call it by this name.

@@ -32,6 +32,12 @@ struct CrackGasOptions {
   void validate() const;
 };
 
+//! Per segment (joint), for output: the aperture [m] of a crack (0 for an intact joint), and the pressure [Pa]
+//! and mass [kg/m] of its own gas (0 where it has none).
+struct CrackSegmentFields {
+  std::vector<double> aperture, gas_pressure, gas_mass;
+};
+
 //! Sums over the gas segments.
 struct CrackGasTotals {
   double mass = 0;           //!< [kg/m]
@@ -95,6 +101,7 @@ class CrackGas {
   std::vector<std::uint8_t> kinds() const;
   std::vector<double> apertures() const;
   std::vector<double> volumes() const;
+  CrackSegmentFields segment_fields() const;
   //! What went into each junction's reservoir since the last clear_deposits() (mass, energy, products).
   std::vector<ChannelConserved> deposits() const;
   void clear_deposits();

@@ -1,0 +1,88 @@
+//! \file input_case.cpp
+//! \brief A case from its input: the sections in order (each in its input_<section>.cpp), the checks that span
+//! sections, and the checks the readers share.
+#include "blastsim/core/error.hpp"
+#include "case.hpp"
+
+#include <fmt/format.h>
+
+#include <unistd.h>
+
+namespace blastsim::app {
+
+CaseKind case_kind(const toml::table& input) {
+  const bool rock = input.contains("rock"), gas = input.contains("gas");
+  return rock && gas ? CaseKind::coupled : (rock ? CaseKind::rock : CaseKind::gas);
+}
+
+Case read_case(const toml::table& input) {
+  Case c;
+  c.kind = case_kind(input);
+  TableReader root(input, "", c.echo);
+  if (c.kind != CaseKind::rock) read_domain(root, c), read_gas(root, c), read_probe(root, c);
+  if (c.kind != CaseKind::gas) read_rock(root, c), read_analysis(root, c);
+  if (c.kind == CaseKind::coupled) read_charges(root, c);  // checks the mesh's holes with the charges'
+  if (c.kind == CaseKind::rock) {
+    std::vector<std::string> labels;
+    for (std::size_t k = 0; k < c.rock.model.mesh.holes.size(); ++k) labels.push_back(fmt::format("rock.mesh.hole.{}", k));
+    if (c.rock.model.mesh.has_holes() && labels.empty())
+      throw InputError(fmt::format("rock.mesh.shape = \"{}\": needs at least one hole ([[rock.mesh.hole]])",
+                                   fdem::mesh_shape_name(c.rock.model.mesh.shape)));
+    fdem::check_mesh_holes(c.rock.model.mesh, labels);
+  }
+  read_time(root, c);
+  read_output(root, c);
+  if (c.kind == CaseKind::rock) read_probe(root, c);
+  if (c.kind == CaseKind::coupled) read_monitor(root, c), read_coupling(root, c);
+  // Sampling intervals against the end time.
+  check_interval("output.interval", c.output.interval, c.time.end, true);
+  for (size_t k = 0; k < c.probes.points.size(); ++k)
+    check_interval(fmt::format("probe.point.{}.interval", k), c.probes.points[k].interval, c.time.end, false);
+  if (c.monitor.blasthole) check_interval("monitor.blasthole.interval", c.monitor.blasthole->interval, c.time.end, false);
+  root.finish();
+  return c;
+}
+
+Case load_case(const std::string& input_path, const std::vector<std::string>& overrides) {
+  return read_case(load_input(input_path, overrides));
+}
+
+cip::CellRegion read_region_shape(TableReader& t) {
+  if (t.text("shape", {"box", "circle"}) == "circle") {
+    const std::array<double, 2> centre = t.pair("center", "m");
+    return cip::CellRegion::circle(centre[0], centre[1], t.number("radius", "m", Range::positive()));
+  }
+  const std::array<double, 2> lo = t.pair("min", "m"), hi = t.pair("max", "m");
+  if (!(hi[0] > lo[0]) || !(hi[1] > lo[1])) throw InputError(fmt::format("{}: box needs max > min in x and y", t.path()));
+  return cip::CellRegion::box(lo[0], lo[1], hi[0], hi[1]);
+}
+
+void check_unique_names(const std::string& kind, const std::vector<std::string>& names) {
+  for (size_t a = 0; a < names.size(); ++a)
+    for (size_t b = a + 1; b < names.size(); ++b)
+      if (names[a] == names[b])
+        throw InputError(fmt::format("{}.{}.name = \"{}\": the same name as {}.{}; each needs its own (it names its "
+                                     "output)", kind, b, names[b], kind, a));
+}
+
+void check_interval(const std::string& key, double interval, double end_time, bool zero_allowed) {
+  if (zero_allowed && interval == 0) return;
+  if (!(interval >= 1e-9 * end_time))
+    throw InputError(fmt::format("{} = {:g} s: must be at least 1e-9 x time.end = {:g} s{} (at most 1e9 samples a run)",
+                                 key, interval, 1e-9 * end_time, zero_allowed ? ", or 0" : ""));
+}
+
+void check_memory_need(const std::string& what, double bytes) {
+  const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (memory > 0 && bytes > memory)
+    throw InputError(fmt::format("{}: needs about {:.3g} GB of memory, this machine has {:.3g} GB", what, bytes / 1e9,
+                                 memory / 1e9));
+}
+
+void check_output_name(const std::string& kind, const std::string& name) {
+  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                          std::string::npos)
+    throw InputError(fmt::format("{} name \"{}\": use letters, digits, '_' or '-' only", kind, name));
+}
+
+}  // namespace blastsim::app

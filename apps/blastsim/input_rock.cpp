@@ -1,0 +1,132 @@
+//! \file input_rock.cpp
+//! \brief [rock]: the rock's material, options, mesh and loads (docs/input.md), into an fdem::RockModelSpec.
+#include "blastsim/core/error.hpp"
+#include "case.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace blastsim::app {
+
+namespace {
+
+fdem::RockMaterial read_material(TableReader& r) {
+  const std::string preset = r.text("preset", {"paper_table2", "none"}, std::string("paper_table2"));
+  fdem::RockMaterial m = preset == "paper_table2" ? fdem::RockMaterial::paper_table2() : fdem::RockMaterial{};
+  auto value = [&](const char* key, const char* unit, double preset_value, Range range) {
+    return preset == "none" ? r.number(key, unit, range) : r.number(key, unit, range, preset_value);
+  };
+  m.density = value("density", "kg/m3", m.density, Range::positive());
+  m.youngs_modulus = value("youngs_modulus", "Pa", m.youngs_modulus, Range::positive());
+  m.poisson_ratio = value("poisson_ratio", "", m.poisson_ratio, Range{0.0, 0.5, false, true});
+  m.tensile_strength = value("tensile_strength", "Pa", m.tensile_strength, Range::positive());
+  m.cohesion = value("cohesion", "Pa", m.cohesion, Range::positive());
+  m.friction_angle =
+      value("friction_angle", "deg", m.friction_angle * 180 / M_PI, Range{0.0, 90.0, false, true}) * M_PI / 180;
+  m.fracture_energy_mode1 = value("fracture_energy_mode1", "J/m2", m.fracture_energy_mode1, Range::positive());
+  m.fracture_energy_mode2 = value("fracture_energy_mode2", "J/m2", m.fracture_energy_mode2, Range::positive());
+  m.contact_friction = value("contact_friction", "", m.contact_friction, Range::non_negative());
+  return m;
+}
+
+fdem::MeshSpec read_mesh(TableReader& t) {
+  using fdem::MeshShape;
+  fdem::MeshSpec s;
+  s.label = "rock.mesh";
+  const std::vector<std::string> shapes{"rectangle", "disc", "disc_with_hole", "rectangle_with_hole",
+                                        "rectangle_with_holes", "disc_with_holes", "file"};
+  const std::string shape = t.text("shape", shapes);
+  s.shape = static_cast<MeshShape>(std::find(shapes.begin(), shapes.end(), shape) - shapes.begin());
+  s.jitter = t.number("jitter", "", Range{0.0, 0.25, false, false}, 0.0);
+  s.seed = t.integer("seed", "", 0, 1);
+  if (s.shape == MeshShape::file) {
+    s.file = t.text("file", {});
+    return s;
+  }
+  s.element_size = t.number("element_size", "m", Range::positive());
+  s.ring_mesher = t.text("mesher", {"gmsh", "rings"}, std::string("gmsh")) == "rings";
+  if (s.ring_mesher && s.shape != MeshShape::disc_with_hole)
+    throw InputError(fmt::format("{}.mesher = \"rings\" meshes only shape = \"disc_with_hole\" (this mesh is \"{}\"): use "
+                                 "mesher = \"gmsh\"", t.path(), shape));
+  for (TableReader& h : t.table_array("hole")) {
+    if (!s.has_holes())
+      throw InputError(fmt::format("{}: holes are cut from shape = \"rectangle_with_holes\" or \"disc_with_holes\" "
+                                   "(this mesh is \"{}\")", h.path(), shape));
+    s.holes.push_back({h.pair("center", "m"), h.number("radius", "m", Range::positive())});
+    h.finish();
+  }
+  if (s.is_rectangle()) {
+    s.min = t.pair("min", "m");
+    s.max = t.pair("max", "m");
+    if (!(s.max[0] > s.min[0]) || !(s.max[1] > s.min[1]))
+      throw InputError(fmt::format("{}: max must exceed min in x and y", t.path()));
+  } else {
+    s.center = t.pair("center", "m", std::array<double, 2>{0.0, 0.0});
+    s.radius = t.number("radius", "m", Range::positive());
+  }
+  if (s.shape == MeshShape::disc_with_hole || s.shape == MeshShape::rectangle_with_hole) {
+    if (s.shape == MeshShape::rectangle_with_hole) s.center = t.pair("center", "m");
+    s.hole_radius = t.number("hole_radius", "m", Range::positive());
+  }
+  // Memory before meshing: about 2.3 area / h^2 triangles, each about 2 kB in mesh, topology and solver.
+  const double triangles = 2.3 * s.area() / (s.element_size * s.element_size);
+  check_memory_need(fmt::format("rock.mesh.element_size = {:g} m on this {} (about {:.3g} triangles)", s.element_size,
+                                shape, triangles),
+                    triangles * 2048.0);
+  for (TableReader& l : t.table_array("joint_line")) {
+    s.joint_lines.push_back({l.pair("from", "m"), l.pair("to", "m")});
+    l.finish();
+  }
+  fdem::check_joint_lines(s);
+  return s;
+}
+
+}  // namespace
+
+void read_rock(TableReader& root, Case& c) {
+  fdem::RockModelSpec& m = c.rock.model;
+  TableReader rock = root.table("rock", true);
+  m.material = read_material(rock);
+  m.options.joint_penalty_factor = rock.number("joint_penalty_factor", "", Range::positive(), 10.0);
+  m.options.contact_penalty_factor = rock.number("contact_penalty_factor", "", Range::positive(), 10.0);
+  m.options.damping_ratio = rock.number("damping_ratio", "", Range{0.0, 1.0, false, true}, 0.0);
+  m.options.contact = rock.boolean("contact", true);
+  m.options.gravity = rock.pair("gravity", "m/s2", std::array<double, 2>{0.0, 0.0});
+  m.initial_velocity = rock.pair("initial_velocity", "m/s", std::array<double, 2>{0.0, 0.0});
+  c.rock.pressure_ramp_time = rock.number("pressure_ramp_time", "s", Range::non_negative(), 0.0);
+  TableReader mesh = rock.table("mesh", true);
+  m.mesh = read_mesh(mesh);
+  mesh.finish();
+  for (TableReader& v : rock.table_array("velocity")) {
+    fdem::VelocityLoad l;
+    l.label = v.path();
+    l.min = v.pair("min", "m");
+    l.max = v.pair("max", "m");
+    l.velocity = v.pair("velocity", "m/s");
+    const std::string comp = v.text("components", {"x", "y", "xy"}, std::string("xy"));
+    l.along_x = comp != "y";
+    l.along_y = comp != "x";
+    v.finish();
+    m.velocities.push_back(l);
+  }
+  for (TableReader& p : rock.table_array("pressure")) {
+    m.pressures.push_back({p.path(), p.text("boundary", {}), p.number("pressure", "Pa", Range::any())});
+    p.finish();
+  }
+  for (TableReader& v : rock.table_array("viscous_boundary")) {
+    m.viscous_boundaries.push_back({v.path(), v.text("boundary", {})});
+    v.finish();
+  }
+  rock.finish();
+  m.material.validate();
+  m.options.validate();
+  if (c.kind == CaseKind::coupled && !m.pressures.empty())
+    throw InputError("rock.pressure: a coupled case loads the rock with the gas only; remove the [[rock.pressure]] "
+                     "tables (or run the rock alone)");
+  if (c.kind == CaseKind::coupled && c.rock.pressure_ramp_time > 0)
+    throw InputError("rock.pressure_ramp_time: not used in a coupled case (the gas loads the rock); remove it");
+}
+
+}  // namespace blastsim::app

@@ -1,0 +1,114 @@
+//! \file rock_model.hpp
+//! \brief A rock model from its description: the mesh (a Gmsh shape, the ring mesher, or a .msh file read as
+//! data, with an optional jitter of its interior vertices), its FDEM topology, and the solver with its
+//! initial velocity, prescribed velocities, boundary pressures, viscous boundaries and velocity probes.
+//! Host code; every error is an InputError that names the part through its `label` (what the caller calls
+//! it, e.g. an input key).
+#pragma once
+
+#include "blastsim/fdem/gmsh_mesh.hpp"
+#include "blastsim/fdem/material.hpp"
+#include "blastsim/fdem/mesh.hpp"
+#include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/fdem/rock_types.hpp"
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace blastsim::fdem {
+
+//! The shapes a mesh can have.
+enum class MeshShape { rectangle, disc, disc_with_hole, rectangle_with_hole, rectangle_with_holes, disc_with_holes, file };
+//! The shape's name ("rectangle", "disc_with_holes", "file", ...), as the input spells it.
+const char* mesh_shape_name(MeshShape shape);
+
+//! How a mesh is made.
+struct MeshSpec {
+  std::string label = "mesh";  //!< how messages name the spec; its fields follow as label.field
+  MeshShape shape = MeshShape::rectangle;
+  double element_size = 0;           //!< [m] target edge length (built shapes)
+  std::array<double, 2> center{};    //!< [m] of discs and of a single hole
+  double radius = 0;                 //!< [m] of a disc
+  double hole_radius = 0;            //!< [m] of a single hole
+  std::array<double, 2> min{}, max{};  //!< [m] corners of a rectangle
+  std::string file;                  //!< .msh path (MeshShape::file)
+  bool ring_mesher = false;          //!< disc_with_hole by ring_disc_with_hole() instead of Gmsh
+  std::vector<Segment> joint_lines;  //!< [m] segments the Gmsh mesh follows: a row of joints along each
+  //! [m] holes of rectangle_with_holes / disc_with_holes; boundary groups hole0, hole1, ... in this order
+  std::vector<Circle> holes;
+  double jitter = 0;  //!< interior vertices moved by up to this fraction of their shortest edge (0: none)
+  long long seed = 1;  //!< of the jitter (one realisation per seed)
+  bool is_rectangle() const;
+  bool has_holes() const;  //!< rectangle_with_holes or disc_with_holes
+  //! [m2] the rock's area before the holes (0 for a file).
+  double area() const;
+};
+
+//! Throws InputError unless every hole of a rectangle_with_holes / disc_with_holes spec lies inside the rock
+//! with half an element to spare and at least half an element of rock lies between any two; `labels[k]`
+//! names hole k in the message. A spec with such a shape needs at least one hole.
+void check_mesh_holes(const MeshSpec& spec, const std::vector<std::string>& labels);
+
+//! Throws InputError naming joint line k as label.joint_line.k unless every joint line lies in the rock (both
+//! ends inside or on its boundary), is at least half an element long, and the mesh is one Gmsh can make lines
+//! in (not rectangle_with_hole, not the ring mesher).
+void check_joint_lines(const MeshSpec& spec);
+
+//! The mesh of `spec`, jittered when spec.jitter > 0 (the vertices on joint lines stay, so the lines stay
+//! straight). Throws InputError when Gmsh or the file fails, or when the jittered mesh is invalid.
+NamedMesh build_mesh(const MeshSpec& spec);
+
+//! Prescribed velocity [m/s] of every node whose initial position lies in the box [min, max] [m].
+struct VelocityLoad {
+  std::string label;
+  std::array<double, 2> min{}, max{};
+  std::array<double, 2> velocity{};
+  bool along_x = true, along_y = true;
+};
+//! A pressure [Pa] on the edges of a named boundary group.
+struct PressureLoad {
+  std::string label;
+  std::string boundary;
+  double pressure = 0;
+};
+//! A viscous (non-reflecting) boundary on a named boundary group (RockSolver::set_viscous_boundary()).
+struct ViscousBoundary {
+  std::string label;
+  std::string boundary;
+};
+//! A velocity probe at a point of the initial mesh [m], its peak counted up to `until` [s].
+struct ProbeSpec {
+  std::string label;
+  std::array<double, 2> position{};
+  double until = 1e308;
+};
+
+//! Everything a rock model is made of.
+struct RockModelSpec {
+  MeshSpec mesh;
+  RockMaterial material;
+  RockOptions options;
+  std::array<double, 2> initial_velocity{};  //!< [m/s] of every node (prescribed velocities override it)
+  std::vector<VelocityLoad> velocities;
+  std::vector<PressureLoad> pressures;
+  std::vector<ViscousBoundary> viscous_boundaries;
+  std::vector<ProbeSpec> probes;
+};
+
+//! The mesh, its FDEM topology and the solver, with the nodes of each velocity load.
+struct RockModel {
+  NamedMesh mesh;
+  FdemTopology topology;
+  std::unique_ptr<RockSolver> solver;
+  std::vector<std::vector<int>> velocity_nodes;
+};
+//! Builds the model. Throws InputError: a velocity load's box without nodes, a boundary group the mesh lacks
+//! (listing those it has), a probe outside the rock.
+RockModel build_rock_model(const RockModelSpec& spec);
+
+//! Mean length [m] of the joints of a topology (0 without joints).
+double mean_joint_length(const FdemTopology& topology);
+
+}  // namespace blastsim::fdem

@@ -1,0 +1,211 @@
+//! \file rock_model.cpp
+//! \brief The mesh factory and the rock model's set-up (rock_model.hpp).
+#include "blastsim/fdem/rock_model.hpp"
+
+#include "blastsim/core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace blastsim::fdem {
+
+namespace {
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+//! The vertices that lie on a joint line (kept in place by the mesh jitter: the lines stay straight).
+std::vector<int> joint_line_vertices(const TriangleMesh& mesh, const std::vector<Segment>& lines, double h) {
+  std::vector<int> out;
+  for (size_t v = 0; v < mesh.vertices.size(); ++v)
+    for (const Segment& g : lines) {
+      const double lx = g.b[0] - g.a[0], ly = g.b[1] - g.a[1], len2 = lx * lx + ly * ly;
+      const double px = mesh.vertices[v][0] - g.a[0], py = mesh.vertices[v][1] - g.a[1];
+      const double t = std::clamp((px * lx + py * ly) / len2, 0.0, 1.0);
+      if (std::hypot(px - t * lx, py - t * ly) < 1e-6 * h) {
+        out.push_back(static_cast<int>(v));
+        break;
+      }
+    }
+  return out;
+}
+
+NamedMesh mesh_of_shape(const MeshSpec& s) {
+  const double h = s.element_size;
+  switch (s.shape) {
+    case MeshShape::rectangle: return gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h, s.joint_lines);
+    case MeshShape::disc: return gmsh_disc(s.center[0], s.center[1], s.radius, h, s.joint_lines);
+    case MeshShape::disc_with_hole:
+      if (s.ring_mesher) return ring_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
+      return gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.joint_lines);
+    case MeshShape::rectangle_with_hole:
+      return gmsh_rectangle_with_hole(s.min[0], s.min[1], s.max[0], s.max[1], s.center[0], s.center[1], s.hole_radius, h);
+    case MeshShape::rectangle_with_holes:
+      return gmsh_rectangle_with_holes(s.min[0], s.min[1], s.max[0], s.max[1], s.holes, h, s.joint_lines);
+    case MeshShape::disc_with_holes:
+      return gmsh_disc_with_holes(s.center[0], s.center[1], s.radius, s.holes, h, s.joint_lines);
+    case MeshShape::file: break;
+  }
+  return read_gmsh_file(s.file);
+}
+}  // namespace
+
+const char* mesh_shape_name(MeshShape shape) {
+  switch (shape) {
+    case MeshShape::rectangle: return "rectangle";
+    case MeshShape::disc: return "disc";
+    case MeshShape::disc_with_hole: return "disc_with_hole";
+    case MeshShape::rectangle_with_hole: return "rectangle_with_hole";
+    case MeshShape::rectangle_with_holes: return "rectangle_with_holes";
+    case MeshShape::disc_with_holes: return "disc_with_holes";
+    case MeshShape::file: return "file";
+  }
+  return "?";
+}
+
+bool MeshSpec::is_rectangle() const {
+  return shape == MeshShape::rectangle || shape == MeshShape::rectangle_with_hole || shape == MeshShape::rectangle_with_holes;
+}
+bool MeshSpec::has_holes() const { return shape == MeshShape::rectangle_with_holes || shape == MeshShape::disc_with_holes; }
+double MeshSpec::area() const {
+  if (shape == MeshShape::file) return 0;
+  return is_rectangle() ? std::fabs((max[0] - min[0]) * (max[1] - min[1])) : M_PI * radius * radius;
+}
+
+void check_mesh_holes(const MeshSpec& s, const std::vector<std::string>& labels) {
+  if (!s.has_holes()) return;
+  const double h = s.element_size;
+  for (std::size_t k = 0; k < s.holes.size(); ++k) {
+    const Circle& c = s.holes[k];
+    const bool inside = s.is_rectangle()
+                            ? c.center[0] - c.radius >= s.min[0] + 0.5 * h && c.center[0] + c.radius <= s.max[0] - 0.5 * h &&
+                                  c.center[1] - c.radius >= s.min[1] + 0.5 * h && c.center[1] + c.radius <= s.max[1] - 0.5 * h
+                            : std::hypot(c.center[0] - s.center[0], c.center[1] - s.center[1]) + c.radius <=
+                                  s.radius - 0.5 * h;
+    if (!inside)
+      throw InputError(labels[k] + ": the hole (centre [" + num(c.center[0]) + ", " + num(c.center[1]) + "] m, radius " +
+                       num(c.radius) + " m) is not inside the rock's " + mesh_shape_name(s.shape) +
+                       " with half an element (" + num(0.5 * h) + " m) to spare");
+    for (std::size_t l = 0; l < k; ++l) {
+      const Circle& o = s.holes[l];
+      const double d = std::hypot(c.center[0] - o.center[0], c.center[1] - o.center[1]);
+      if (d < c.radius + o.radius + 0.5 * h)
+        throw InputError(labels[k] + ": its hole overlaps that of " + labels[l] + " (centres " + num(d) +
+                         " m apart, radii " + num(c.radius) + " and " + num(o.radius) +
+                         " m; at least half an element, " + num(0.5 * h) + " m, of rock must lie between them)");
+    }
+  }
+}
+
+void check_joint_lines(const MeshSpec& s) {
+  for (std::size_t k = 0; k < s.joint_lines.size(); ++k) {
+    const Segment& g = s.joint_lines[k];
+    const std::string label = s.label + ".joint_line." + std::to_string(k);
+    auto point = [](const std::array<double, 2>& p) { return "(" + num(p[0]) + ", " + num(p[1]) + ") m"; };
+    if (s.shape == MeshShape::rectangle_with_hole || s.ring_mesher)
+      throw InputError(label + ": joint lines are made by Gmsh for shape = \"rectangle\", \"disc\", \"disc_with_hole\", "
+                       "\"rectangle_with_holes\" or \"disc_with_holes\" (this mesh: shape \"" + mesh_shape_name(s.shape) +
+                       "\", mesher \"" + (s.ring_mesher ? "rings" : "gmsh") + "\")");
+    if (std::hypot(g.b[0] - g.a[0], g.b[1] - g.a[1]) < 0.5 * s.element_size)
+      throw InputError(label + ": from " + point(g.a) + " to " + point(g.b) + " is shorter than half an element (" +
+                       num(0.5 * s.element_size) + " m)");
+    for (const auto& p : {g.a, g.b}) {
+      const double tol = 1e-9 * std::max({s.max[0] - s.min[0], s.max[1] - s.min[1], s.radius});
+      const double r = std::hypot(p[0] - s.center[0], p[1] - s.center[1]);
+      const bool inside = s.is_rectangle() ? p[0] >= s.min[0] - tol && p[0] <= s.max[0] + tol && p[1] >= s.min[1] - tol &&
+                                                 p[1] <= s.max[1] + tol
+                                           : r <= s.radius + tol && (s.shape != MeshShape::disc_with_hole || r >= s.hole_radius - tol);
+      if (!inside)
+        throw InputError(label + ": the end " + point(p) + " lies outside the rock; both ends must lie in the " +
+                         mesh_shape_name(s.shape) + " or on its boundary");
+    }
+  }
+}
+
+NamedMesh build_mesh(const MeshSpec& s) {
+  NamedMesh m = mesh_of_shape(s);
+  if (s.jitter > 0) {
+    try {
+      perturb_mesh(m.mesh, s.jitter, static_cast<std::uint64_t>(s.seed),
+                   joint_line_vertices(m.mesh, s.joint_lines, s.element_size));
+    } catch (const InputError& e) {
+      throw InputError(s.label + ".jitter = " + num(s.jitter) + ": the perturbed mesh is invalid (" + e.what() +
+                       "); use a smaller jitter");
+    }
+  }
+  return m;
+}
+
+RockModel build_rock_model(const RockModelSpec& spec) {
+  RockModel m;
+  m.mesh = build_mesh(spec.mesh);
+  m.topology = build_topology(m.mesh.mesh);
+  m.solver = std::make_unique<RockSolver>(m.topology, spec.material, spec.options);
+  RockSolver& solver = *m.solver;
+  const FdemTopology& topo = m.topology;
+  // Initial velocities first: prescribed velocities then override them on their nodes.
+  if (spec.initial_velocity[0] != 0 || spec.initial_velocity[1] != 0) {
+    std::vector<double> v(2 * solver.node_count());
+    for (int n = 0; n < solver.node_count(); ++n) v[2 * n] = spec.initial_velocity[0], v[2 * n + 1] = spec.initial_velocity[1];
+    solver.set_velocities(v);
+  }
+  for (const VelocityLoad& l : spec.velocities) {
+    std::vector<int> nodes;
+    for (size_t n = 0; n < topo.node_positions.size(); ++n) {
+      const auto& p = topo.node_positions[n];
+      if (p[0] >= l.min[0] && p[0] <= l.max[0] && p[1] >= l.min[1] && p[1] <= l.max[1]) nodes.push_back(static_cast<int>(n));
+    }
+    if (nodes.empty())
+      throw InputError(l.label + ": no mesh node lies in the box [" + num(l.min[0]) + ", " + num(l.max[0]) + "] x [" +
+                       num(l.min[1]) + ", " + num(l.max[1]) + "] m");
+    solver.prescribe_velocity(nodes, l.along_x, l.along_y, l.velocity[0], l.velocity[1]);
+    m.velocity_nodes.push_back(nodes);
+  }
+  // The edge slots of a named boundary group; `label` names the part that asked for it.
+  auto group_slots = [&](const std::string& label, const std::string& group_name) {
+    const auto group = m.mesh.boundary_groups.find(group_name);
+    if (group == m.mesh.boundary_groups.end()) {
+      std::string names;
+      for (const auto& [name, edges] : m.mesh.boundary_groups) names += (names.empty() ? "" : ", ") + name;
+      throw InputError(label + ".boundary = \"" + group_name + "\": the mesh has no such boundary group (it has: " + names +
+                       ")");
+    }
+    return boundary_slots(topo, group->second, group_name);
+  };
+  for (const PressureLoad& p : spec.pressures) solver.set_edge_pressure(group_slots(p.label, p.boundary), p.pressure);
+  std::vector<int> viscous;
+  for (const ViscousBoundary& v : spec.viscous_boundaries) {
+    const std::vector<int> slots = group_slots(v.label, v.boundary);
+    viscous.insert(viscous.end(), slots.begin(), slots.end());
+  }
+  if (!viscous.empty()) solver.set_viscous_boundary(viscous);
+  std::vector<std::array<double, 2>> points;
+  std::vector<double> until;
+  for (const ProbeSpec& p : spec.probes) points.push_back(p.position), until.push_back(p.until);
+  try {
+    solver.set_probes(points, until);
+  } catch (const InputError&) {
+    for (const ProbeSpec& p : spec.probes) {  // name the first probe outside the rock
+      try {
+        solver.set_probes({p.position});
+      } catch (const InputError&) {
+        throw InputError(p.label + ".position = [" + num(p.position[0]) + ", " + num(p.position[1]) +
+                         "] m: lies in no triangle of the rock mesh; a rock probe must lie in the rock");
+      }
+    }
+    throw;
+  }
+  return m;
+}
+
+double mean_joint_length(const FdemTopology& t) {
+  double sum = 0;
+  for (const Joint& j : t.joints)
+    sum += std::hypot(t.node_positions[j.a1][0] - t.node_positions[j.a0][0], t.node_positions[j.a1][1] - t.node_positions[j.a0][1]);
+  return t.joints.empty() ? 0.0 : sum / t.joints.size();
+}
+
+}  // namespace blastsim::fdem
