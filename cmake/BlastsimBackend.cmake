@@ -31,6 +31,14 @@ function(blastsim_kernel_sources)
   endif()
 endfunction()
 
+# Links VTK to a library that writes ParaView files (BLASTSIM_HAVE_VTK in its sources) when the build has it.
+function(blastsim_use_vtk target)
+  if(BLASTSIM_VTK_ACTIVE)
+    target_link_libraries(${target} PRIVATE ${VTK_LIBRARIES})
+    target_compile_definitions(${target} PRIVATE BLASTSIM_HAVE_VTK=1)
+  endif()
+endfunction()
+
 # Common warning set for project targets.
 function(blastsim_warnings target)
   target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>)

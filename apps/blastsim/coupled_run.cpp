@@ -9,7 +9,7 @@
 #include "blastsim/ibm/budget.hpp"
 #include "blastsim/ibm/coupler.hpp"
 #include "gas_outputs.hpp"
-#include "vtk_gas_writer.hpp"
+#include "blastsim/cip/vtk_writer.hpp"
 #include "rock_outputs.hpp"
 
 #include <fmt/format.h>
@@ -33,12 +33,12 @@ class CouplingSeries {
         initial_(ibm::initial_energy(gas, rock)) {}
   void write_checkpoint(CheckpointWriter& w) {
     w.value("out.coupling.initial", initial_);
-    w.value("out.coupling.csv_size", file_.size());
+    file_.write_checkpoint(w, "out.coupling.csv_size");
   }
   void read_checkpoint(CheckpointReader& r) {
     initial_ = r.value<double>("out.coupling.initial");
     if (!std::isfinite(initial_) || initial_ <= 0) r.fail("out.coupling.initial", "not a finite energy > 0");
-    file_.truncate_to(r.value<std::uint64_t>("out.coupling.csv_size"));
+    file_.read_checkpoint(r, "out.coupling.csv_size");
   }
 
   //! Writes one row (ibm::coupled_budget(): docs/validation.md S4); returns the budget residual relative to
@@ -151,16 +151,15 @@ class BlastholeFiles {
   void write_checkpoint(CheckpointWriter& w) {
     w.value("out.blasthole.next", next_);
     w.value("out.blasthole.events", monitor_ ? monitor_->events() : ibm::BlastholeEvents{});
-    w.value("out.blasthole.csv_size", monitor_ ? file_->size() : std::uint64_t{0});
+    if (file_) file_->write_checkpoint(w, "out.blasthole.csv_size");
   }
   void read_checkpoint(CheckpointReader& r) {
     next_ = r.value<double>("out.blasthole.next");
     if (!std::isfinite(next_)) r.fail("out.blasthole.next", "not finite");
     const ibm::BlastholeEvents ev = r.value<ibm::BlastholeEvents>("out.blasthole.events");
-    const std::uint64_t size = r.value<std::uint64_t>("out.blasthole.csv_size");
     if (!monitor_) return;
     monitor_->restore(ev);
-    file_->truncate_to(size);
+    file_->read_checkpoint(r, "out.blasthole.csv_size");
   }
 
  private:
@@ -228,18 +227,17 @@ class ChargeFiles {
     return out;
   }
   void write_checkpoint(CheckpointWriter& w) {
-    w.value("out.charges.csv_size", file_ ? file_->size() : std::uint64_t{0});
+    if (file_) file_->write_checkpoint(w, "out.charges.csv_size");
     w.host_array("out.charges.peak", peak_);
     w.host_array("out.charges.peak_time", peak_time_);
   }
   void read_checkpoint(CheckpointReader& r) {
-    const std::uint64_t size = r.value<std::uint64_t>("out.charges.csv_size");
     const std::vector<double> peak = r.host_array<double>("out.charges.peak"),
                               when = r.host_array<double>("out.charges.peak_time");
     if (peak.size() != peak_.size() || when.size() != peak_.size())
       r.fail("out.charges.peak", "not one value per charge (a checkpoint of another case?)");
     peak_ = peak, peak_time_ = when;
-    if (file_) file_->truncate_to(size);
+    if (file_) file_->read_checkpoint(r, "out.charges.csv_size");
   }
 
  private:
@@ -418,7 +416,7 @@ class CoupledRunOutputs : public RunOutputs {
 void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& options) {
   const GasSettings& g = c.gas;
   const CouplingSettings& k = c.coupling;
-  if (c.output.vtk && !vtk_available())
+  if (c.output.vtk && !cip::vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
   fdem::RockModel model = make_rock_model(c);
   fdem::RockSolver& rock = *model.solver;

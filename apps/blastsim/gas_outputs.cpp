@@ -4,7 +4,7 @@
 
 #include "blastsim/cip/balance.hpp"
 #include "blastsim/core/error.hpp"
-#include "vtk_gas_writer.hpp"
+#include "blastsim/cip/vtk_writer.hpp"
 
 #include <fmt/format.h>
 
@@ -47,10 +47,9 @@ void GasOutputs::write_checkpoint(CheckpointWriter& w) {
   std::vector<std::uint8_t> done;
   for (const auto& l : line_done_) done.insert(done.end(), l.begin(), l.end());
   w.host_array("out.gas.line_done", done);
-  std::vector<std::uint64_t> sizes{totals_.size()};
-  for (CsvSeries& f : point_files_) sizes.push_back(f.size());
-  w.host_array("out.gas.csv_sizes", sizes);
-  write_pvd_checkpoint(w, "out.gas.pvd", pvd_);
+  totals_.write_checkpoint(w, "out.gas.totals_size");
+  for (size_t p = 0; p < point_files_.size(); ++p) point_files_[p].write_checkpoint(w, "out.gas.point_size." + c_.probes.points[p].name);
+  pvd_.write_checkpoint(w, "out.gas.pvd");
 }
 
 void GasOutputs::read_checkpoint(CheckpointReader& r) {
@@ -66,17 +65,16 @@ void GasOutputs::read_checkpoint(CheckpointReader& r) {
   initial_ = r.value<cip::GasTotals>("out.gas.initial");
   next_point_ = r.host_array<double>("out.gas.next_point");
   const std::vector<std::uint8_t> done = r.host_array<std::uint8_t>("out.gas.line_done");
-  const std::vector<std::uint64_t> sizes = r.host_array<std::uint64_t>("out.gas.csv_sizes");
   size_t at = 0;
   for (auto& l : line_done_)
     for (size_t m = 0; m < l.size(); ++m) l[m] = at < done.size() && done[at++];
-  if (next_point_.size() != point_files_.size() || sizes.size() != point_files_.size() + 1 || at != done.size())
+  if (next_point_.size() != point_files_.size() || at != done.size())
     throw InputError("checkpoint " + r.path() + ": its probes differ from this case's");
   for (double t : next_point_)
     if (!std::isfinite(t)) r.fail("out.gas.next_point", "a probe time is not finite");
-  totals_.truncate_to(sizes[0]);
-  for (size_t p = 0; p < point_files_.size(); ++p) point_files_[p].truncate_to(sizes[p + 1]);
-  read_pvd_checkpoint(r, "out.gas.pvd", pvd_);
+  totals_.read_checkpoint(r, "out.gas.totals_size");
+  for (size_t p = 0; p < point_files_.size(); ++p) point_files_[p].read_checkpoint(r, "out.gas.point_size." + c_.probes.points[p].name);
+  pvd_.read_checkpoint(r, "out.gas.pvd");
 }
 
 double GasOutputs::next_event(double t) const {
@@ -116,7 +114,7 @@ void GasOutputs::write_end(double dt, bool snapshot_written) {
 void GasOutputs::snapshot() {
   if (!c_.output.vtk) return;
   const std::string name = fmt::format("gas_{:06d}.vti", snapshot_index_++);
-  write_gas_vti((dir_ / name).string(), solver_.grid(), solver_.to_host());
+  cip::write_gas_vti((dir_ / name).string(), solver_.grid(), solver_.to_host());
   pvd_.add(solver_.time(), name);
 }
 

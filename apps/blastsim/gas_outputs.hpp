@@ -6,7 +6,8 @@
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/core/checkpoint.hpp"
 #include "case.hpp"
-#include "output_files.hpp"
+#include "run_loop.hpp"
+#include "blastsim/core/output_files.hpp"
 
 #include <filesystem>
 #include <ostream>

@@ -4,7 +4,7 @@
 #include "blastsim/core/error.hpp"
 #include "gas_outputs.hpp"
 #include "run_loop.hpp"
-#include "vtk_gas_writer.hpp"
+#include "blastsim/cip/vtk_writer.hpp"
 
 namespace blastsim::app {
 
@@ -55,7 +55,7 @@ class GasRunOutputs : public RunOutputs {
 }  // namespace
 
 void run_gas_case(const Case& c, std::ostream& log, const RunOptions& options) {
-  if (c.output.vtk && !vtk_available())
+  if (c.output.vtk && !cip::vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
   cip::GasSolver solver(c.gas.grid, c.gas.materials(), c.gas.solver);
   solver.initialise([&](double x, double y) { return c.gas.initial_state(x, y); });

@@ -60,25 +60,33 @@ const toml::node* TableReader::find(const std::string& key) {
 
 bool TableReader::has(const std::string& key) const { return table_->get(key) != nullptr; }
 
+const toml::node* TableReader::lookup(const std::string& key, bool has_fallback, const std::string& what) {
+  const toml::node* n = find(key);
+  if (!n && !has_fallback) missing(key, what);
+  return n;
+}
+
 void TableReader::missing(const std::string& key, const std::string& what) const {
   throw InputError(fmt::format("missing required key '{}' ({})", key_path(key), what));
 }
 
+void TableReader::wrong_type(const std::string& key, const std::string& what, const toml::node& n) const {
+  throw InputError(fmt::format("{} must be {}, got {}", key_path(key), what, type_name(n)));
+}
+
+void TableReader::echo_value(const std::string& key, const std::string& value, bool given) {
+  echo(key, fmt::format("{} = {}{}", key_path(key), value, given ? "" : "   (default)"));
+}
+
 double TableReader::number(const std::string& key, const char* unit, Range range, std::optional<double> fallback) {
-  const toml::node* n = find(key);
-  double v;
-  if (!n) {
-    if (!fallback) missing(key, fmt::format("a number {}{}", range.describe(), unit && *unit ? std::string(" [") + unit + "]" : ""));
-    v = *fallback;
-  } else if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
-    v = *d;
-  } else {
-    throw InputError(fmt::format("{} must be a number, got {}", key_path(key), type_name(*n)));
-  }
-  if (!range.contains(v))
-    throw InputError(fmt::format("{} = {}: must be {}", key_path(key), with_unit(show(v), unit), range.describe()));
-  echo(key, fmt::format("{} = {}{}", key_path(key), with_unit(show(v), unit), n ? "" : "   (default)"));
-  return v;
+  const toml::node* n =
+      lookup(key, fallback.has_value(), fmt::format("a number {}{}", range.describe(), unit && *unit ? std::string(" [") + unit + "]" : ""));
+  const std::optional<double> d = n ? n->value<double>() : fallback;
+  if (n && (!d || !(n->is_floating_point() || n->is_integer()))) wrong_type(key, "a number", *n);
+  if (!range.contains(*d))
+    throw InputError(fmt::format("{} = {}: must be {}", key_path(key), with_unit(show(*d), unit), range.describe()));
+  echo_value(key, with_unit(show(*d), unit), n);
+  return *d;
 }
 
 std::optional<double> TableReader::optional_number(const std::string& key, const char* unit, Range range) {
@@ -91,66 +99,42 @@ std::optional<double> TableReader::optional_number(const std::string& key, const
 
 long long TableReader::integer(const std::string& key, const char* unit, long long min_value,
                                std::optional<long long> fallback, long long max_value) {
-  const toml::node* n = find(key);
-  long long v;
-  if (!n) {
-    if (!fallback) missing(key, fmt::format("an integer >= {}", min_value));
-    v = *fallback;
-  } else if (n->is_integer()) {
-    v = *n->value<long long>();
-  } else {
-    throw InputError(fmt::format("{} must be an integer, got {}", key_path(key), type_name(*n)));
-  }
+  const toml::node* n = lookup(key, fallback.has_value(), fmt::format("an integer >= {}", min_value));
+  if (n && !n->is_integer()) wrong_type(key, "an integer", *n);
+  const long long v = n ? *n->value<long long>() : *fallback;
   if (v < min_value || v > max_value)
-    throw InputError(v < min_value ? fmt::format("{} = {}: must be an integer >= {}", key_path(key), v, min_value)
-                                   : fmt::format("{} = {}: must be an integer <= {}", key_path(key), v, max_value));
-  echo(key, fmt::format("{} = {}{}", key_path(key), with_unit(std::to_string(v), unit), n ? "" : "   (default)"));
+    throw InputError(fmt::format("{} = {}: must be an integer {} {}", key_path(key), v, v < min_value ? ">=" : "<=",
+                                 v < min_value ? min_value : max_value));
+  echo_value(key, with_unit(std::to_string(v), unit), n);
   return v;
 }
 
 bool TableReader::boolean(const std::string& key, std::optional<bool> fallback) {
-  const toml::node* n = find(key);
-  bool v;
-  if (!n) {
-    if (!fallback) missing(key, "true or false");
-    v = *fallback;
-  } else if (n->is_boolean()) {
-    v = *n->value<bool>();
-  } else {
-    throw InputError(fmt::format("{} must be true or false, got {}", key_path(key), type_name(*n)));
-  }
-  echo(key, fmt::format("{} = {}{}", key_path(key), v ? "true" : "false", n ? "" : "   (default)"));
+  const toml::node* n = lookup(key, fallback.has_value(), "true or false");
+  if (n && !n->is_boolean()) wrong_type(key, "true or false", *n);
+  const bool v = n ? *n->value<bool>() : *fallback;
+  echo_value(key, v ? "true" : "false", n);
   return v;
 }
 
 std::string TableReader::text(const std::string& key, const std::vector<std::string>& allowed,
                               std::optional<std::string> fallback) {
-  const toml::node* n = find(key);
   std::string list;
   for (const std::string& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-  std::string v;
-  if (!n) {
-    if (!fallback) missing(key, "one of " + list);
-    v = *fallback;
-  } else if (n->is_string()) {
-    v = *n->value<std::string>();
-  } else {
-    throw InputError(fmt::format("{} must be a string (one of {}), got {}", key_path(key), list, type_name(*n)));
-  }
+  const toml::node* n = lookup(key, fallback.has_value(), "one of " + list);
+  if (n && !n->is_string()) wrong_type(key, "a string (one of " + list + ")", *n);
+  const std::string v = n ? *n->value<std::string>() : *fallback;
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), v) == allowed.end())
     throw InputError(fmt::format("{} = \"{}\": must be one of {}", key_path(key), v, list));
-  echo(key, fmt::format("{} = \"{}\"{}", key_path(key), v, n ? "" : "   (default)"));
+  echo_value(key, "\"" + v + "\"", n);
   return v;
 }
 
 std::array<double, 2> TableReader::pair(const std::string& key, const char* unit,
                                         std::optional<std::array<double, 2>> fallback) {
-  const toml::node* n = find(key);
-  std::array<double, 2> v{};
-  if (!n) {
-    if (!fallback) missing(key, fmt::format("[x, y]{}", unit && *unit ? std::string(" [") + unit + "]" : ""));
-    v = *fallback;
-  } else {
+  const toml::node* n = lookup(key, fallback.has_value(), fmt::format("[x, y]{}", unit && *unit ? std::string(" [") + unit + "]" : ""));
+  std::array<double, 2> v = fallback.value_or(std::array<double, 2>{});
+  if (n) {
     const toml::array* a = n->as_array();
     if (!a || a->size() != 2 || !(*a)[0].value<double>() || !(*a)[1].value<double>())
       throw InputError(fmt::format("{} must be an array of two numbers [x, y]", key_path(key)));
@@ -158,8 +142,7 @@ std::array<double, 2> TableReader::pair(const std::string& key, const char* unit
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]))
       throw InputError(fmt::format("{} must hold finite numbers", key_path(key)));
   }
-  echo(key, fmt::format("{} = [{}, {}]{}{}", key_path(key), show(v[0]), show(v[1]),
-                               unit && *unit ? std::string(" ") + unit : "", n ? "" : "   (default)"));
+  echo_value(key, fmt::format("[{}, {}]{}", show(v[0]), show(v[1]), unit && *unit ? std::string(" ") + unit : ""), n);
   return v;
 }
 

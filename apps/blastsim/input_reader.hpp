@@ -60,7 +60,12 @@ class TableReader {
 
  private:
   const toml::node* find(const std::string& key);
+  //! The node of `key` (recorded as known); nullptr when absent and `has_fallback`, missing() when absent without.
+  const toml::node* lookup(const std::string& key, bool has_fallback, const std::string& what);
   [[noreturn]] void missing(const std::string& key, const std::string& what) const;
+  [[noreturn]] void wrong_type(const std::string& key, const std::string& what, const toml::node& n) const;
+  //! Echoes "key = value", marked "(default)" unless `given`.
+  void echo_value(const std::string& key, const std::string& value, bool given);
   void echo(const std::string& key, std::string line);
   const toml::table* table_;
   toml::table empty_;

@@ -4,7 +4,7 @@
 
 #include "blastsim/core/error.hpp"
 #include "blastsim/fdem/rock_analysis.hpp"
-#include "vtk_rock_writer.hpp"
+#include "blastsim/fdem/vtk_writer.hpp"
 
 #include <fmt/format.h>
 
@@ -67,30 +67,28 @@ RockOutputs::RockOutputs(const Case& c, const fdem::RockModel& model, bool resum
 void RockOutputs::write_checkpoint(CheckpointWriter& w) {
   w.value("out.rock.index", index_);
   w.value("out.rock.initial", e0_);
-  w.value("out.rock.csv_size", series_.size());
-  w.value("out.rock.fragmentation_size", fragmentation_ ? fragmentation_->size() : std::uint64_t{0});
-  w.value("out.rock.probes_size", probes_ ? probes_->size() : std::uint64_t{0});
-  write_pvd_checkpoint(w, "out.rock.pvd", rock_pvd_);
-  write_pvd_checkpoint(w, "out.joints.pvd", joints_pvd_);
+  series_.write_checkpoint(w, "out.rock.csv_size");
+  if (fragmentation_) fragmentation_->write_checkpoint(w, "out.rock.fragmentation_size");
+  if (probes_) probes_->write_checkpoint(w, "out.rock.probes_size");
+  rock_pvd_.write_checkpoint(w, "out.rock.pvd");
+  joints_pvd_.write_checkpoint(w, "out.joints.pvd");
 }
 
 void RockOutputs::read_checkpoint(CheckpointReader& r) {
   index_ = r.value<int>("out.rock.index");
   if (index_ < 0) r.fail("out.rock.index", "negative");
   e0_ = r.value<fdem::RockEnergies>("out.rock.initial");
-  series_.truncate_to(r.value<std::uint64_t>("out.rock.csv_size"));
-  const std::uint64_t fragmentation = r.value<std::uint64_t>("out.rock.fragmentation_size");
-  const std::uint64_t probes = r.value<std::uint64_t>("out.rock.probes_size");
-  if (fragmentation_) fragmentation_->truncate_to(fragmentation);
-  if (probes_) probes_->truncate_to(probes);
-  read_pvd_checkpoint(r, "out.rock.pvd", rock_pvd_);
-  read_pvd_checkpoint(r, "out.joints.pvd", joints_pvd_);
+  series_.read_checkpoint(r, "out.rock.csv_size");
+  if (fragmentation_) fragmentation_->read_checkpoint(r, "out.rock.fragmentation_size");
+  if (probes_) probes_->read_checkpoint(r, "out.rock.probes_size");
+  rock_pvd_.read_checkpoint(r, "out.rock.pvd");
+  joints_pvd_.read_checkpoint(r, "out.joints.pvd");
 }
 
 void RockOutputs::snapshot() {
   if (!c_.output.vtk && !c_.analysis.fragments && c_.probes.rock_points.empty()) return;
   const fdem::RockSnapshot s = solver_.snapshot();
-  RockCellFields cells;
+  fdem::RockCellFields cells;
   const auto t0 = std::chrono::steady_clock::now();
   if (c_.analysis.fragments) cells.fragment_id = solver_.fragment_labels();
   if (c_.output.vtk) cells.damage = fdem::triangle_damage(s);  // for the VTU only
@@ -101,9 +99,13 @@ void RockOutputs::snapshot() {
   if (!c_.output.vtk) return;
   const std::string rock_name = fmt::format("rock_{:06d}.vtu", index);
   const std::string joints_name = fmt::format("joints_{:06d}.vtu", index);
-  write_rock_vtu((dir_ / rock_name).string(), s, cells);
-  const ibm::CrackSegmentFields gas = crack_ ? crack_->segment_fields() : ibm::CrackSegmentFields{};
-  write_joints_vtu((dir_ / joints_name).string(), s, gas);
+  fdem::write_rock_vtu((dir_ / rock_name).string(), s, cells);
+  std::vector<fdem::JointField> gas;
+  if (crack_) {
+    ibm::CrackSegmentFields f = crack_->segment_fields();
+    gas = {{"aperture", std::move(f.aperture)}, {"gas_pressure", std::move(f.gas_pressure)}, {"gas_mass", std::move(f.gas_mass)}};
+  }
+  fdem::write_joints_vtu((dir_ / joints_name).string(), s, gas);
   rock_pvd_.add(solver_.time(), rock_name);
   joints_pvd_.add(solver_.time(), joints_name);
 }

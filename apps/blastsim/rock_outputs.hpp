@@ -9,7 +9,8 @@
 #include "blastsim/fdem/rock_model.hpp"
 #include "blastsim/ibm/crack_gas.hpp"
 #include "case.hpp"
-#include "output_files.hpp"
+#include "run_loop.hpp"
+#include "blastsim/core/output_files.hpp"
 
 #include <chrono>
 #include <filesystem>

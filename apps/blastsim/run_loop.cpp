@@ -42,6 +42,15 @@ void check_fixed_dt_courant(double dt, double rate, double courant, const cip::G
                                  dt, solver.steps() + 1, solver.time(), dt * rate, courant, courant / rate));
 }
 
+std::filesystem::path make_output_dir(const std::string& d) {
+  std::error_code ec;
+  std::filesystem::create_directories(d, ec);
+  if (ec || !std::filesystem::is_directory(d))
+    throw OutputError("output.directory = \"" + d + "\": cannot be created (" +
+                      (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
+  return d;
+}
+
 void run_loop(Stepper& stepper, RunOutputs& outputs, const RunControl& control, std::ostream& log,
               const RunOptions& options) {
   using Clock = std::chrono::steady_clock;

@@ -4,6 +4,7 @@
 //! run (gas_run.cpp, rock_run.cpp, coupled_run.cpp). Host code only.
 #pragma once
 
+#include <filesystem>
 #include <iosfwd>
 #include <string>
 
@@ -68,6 +69,9 @@ std::string progress_line(long long step, double t, double dt, double end, doubl
 double checked_signal_rate(const cip::GasSolver& solver, const std::string& output_directory, double rate);
 //! InputError when a fixed dt [s] violates the Courant limit at the gas's signal rate [1/s].
 void check_fixed_dt_courant(double dt, double rate, double courant, const cip::GasSolver& solver);
+
+//! Creates the output folder (output.directory); returns its path. OutputError naming the key when it cannot.
+std::filesystem::path make_output_dir(const std::string& directory);
 
 //! Runs a case of each kind (the outputs in its output folder, progress and notes in `log`).
 void run_gas_case(const Case& c, std::ostream& log, const RunOptions& options = {});

@@ -37,21 +37,9 @@ namespace blastsim::cip::detail {
   X(double, volume_flux_x, "face velocity of open x-faces, 0 on closed ones [m/s]")                \
   X(double, volume_flux_y, "face velocity of open y-faces [m/s]")
 
-template <Access A>
-struct GasWork {
-  BLASTSIM_GAS_WORK(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(GasWork, BLASTSIM_GAS_WORK(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct GasLedgers {
-  BLASTSIM_GAS_LEDGERS(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(GasLedgers, BLASTSIM_GAS_LEDGERS(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct MaterialWork {
-  BLASTSIM_GAS_MATERIAL_WORK(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(MaterialWork, BLASTSIM_GAS_MATERIAL_WORK(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_FIELD_GROUP(GasWork, BLASTSIM_GAS_WORK)
+BLASTSIM_FIELD_GROUP(GasLedgers, BLASTSIM_GAS_LEDGERS)
+BLASTSIM_FIELD_GROUP(MaterialWork, BLASTSIM_GAS_MATERIAL_WORK)
 
 BLASTSIM_FIELD_STORAGE(CipField, BLASTSIM_CIP_FIELD_PARTS)
 BLASTSIM_FIELD_STORAGE(MaterialFields, BLASTSIM_GAS_MATERIAL_FIELDS)

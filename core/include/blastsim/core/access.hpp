@@ -41,3 +41,23 @@ using access_field = Field2D<std::conditional_t<A == Access::read, const T, T>>;
   BLAST_HD operator Group<::blastsim::Access::read>() const {                                           \
     return {NAMES};                                                                                     \
   }
+
+//! Declares the view of a field list: Group<A> with one member of access A per entry (a pointer, or for
+//! BLASTSIM_FIELD_GROUP a Field2D on a padded grid shape) and the conversion of its read_write view to its
+//! read view; BLASTSIM_CONST_GROUP a plain Group of const pointers (params).
+#define BLASTSIM_VIEW_GROUP(Group, LIST)                                 \
+  template <::blastsim::Access A>                                      \
+  struct Group {                                                        \
+    LIST(BLASTSIM_VIEW_MEMBER)                                          \
+    BLASTSIM_READ_CONVERSION(Group, LIST(BLASTSIM_MEMBER_NAME))         \
+  };
+#define BLASTSIM_FIELD_GROUP(Group, LIST)                                \
+  template <::blastsim::Access A>                                      \
+  struct Group {                                                        \
+    LIST(BLASTSIM_FIELD_MEMBER)                                         \
+    BLASTSIM_READ_CONVERSION(Group, LIST(BLASTSIM_MEMBER_NAME))         \
+  };
+#define BLASTSIM_CONST_GROUP(Group, LIST) \
+  struct Group {                          \
+    LIST(BLASTSIM_CONST_VIEW_MEMBER)      \
+  };

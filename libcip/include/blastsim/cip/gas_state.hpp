@@ -44,11 +44,7 @@ namespace blastsim::cip {
 #define BLASTSIM_GAS_UNKNOWN_COPY(name, comment) name,
 
 //! One CIP unknown: value and its x and y derivatives on the same padded shape.
-template <Access A>
-struct CipField {
-  BLASTSIM_CIP_FIELD_PARTS(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(CipField, BLASTSIM_CIP_FIELD_PARTS(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_FIELD_GROUP(CipField, BLASTSIM_CIP_FIELD_PARTS)
 //! The whole gas state: rho and e at cell centres, u on x-faces, v on y-faces, each with its derivatives.
 template <Access A>
 struct GasState {
@@ -57,16 +53,8 @@ struct GasState {
 };
 //! The products' volume fraction alpha [-] and partial density m1 = alpha rho1 [kg/m3] (empty fields, never
 //! read, in a run without products).
-template <Access A>
-struct MaterialFields {
-  BLASTSIM_GAS_MATERIAL_FIELDS(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(MaterialFields, BLASTSIM_GAS_MATERIAL_FIELDS(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct ImmersedBoundaryInput {
-  BLASTSIM_GAS_IMMERSED_INPUT(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(ImmersedBoundaryInput, BLASTSIM_GAS_IMMERSED_INPUT(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_FIELD_GROUP(MaterialFields, BLASTSIM_GAS_MATERIAL_FIELDS)
+BLASTSIM_FIELD_GROUP(ImmersedBoundaryInput, BLASTSIM_GAS_IMMERSED_INPUT)
 using CipFieldView = CipField<Access::read_write>;
 using CipFieldReadView = CipField<Access::read>;
 using GasStateView = GasState<Access::read_write>;

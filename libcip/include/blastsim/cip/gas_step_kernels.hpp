@@ -422,11 +422,7 @@ struct BoundaryFlowKernel {
 
 //! The outflow ledger: one record per boundary face (OutflowReference's order), checkpointed.
 #define BLASTSIM_GAS_OUTFLOW_LEDGER(X) X(OutflowLedger, face, "what left through each boundary face since initialise()")
-template <Access A>
-struct OutflowLedgers {
-  BLASTSIM_GAS_OUTFLOW_LEDGER(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(OutflowLedgers, BLASTSIM_GAS_OUTFLOW_LEDGER(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_VIEW_GROUP(OutflowLedgers, BLASTSIM_GAS_OUTFLOW_LEDGER)
 
 //! Adds dt times what crosses boundary face k (BoundaryFlowKernel) to that face's outflow-ledger record: one
 //! thread a face, so no atomics, and the ledger stays on the device.

@@ -39,14 +39,8 @@ struct ChargeLedger {
 };
 #define BLASTSIM_CHARGE_LEDGER(X) X(ChargeLedger, burn, "per cell i + nx j")
 
-struct ChargeCellParams {
-  BLASTSIM_CHARGE_CELL_PARAMS(BLASTSIM_CONST_VIEW_MEMBER)
-};
-template <Access A>
-struct ChargeLedgers {
-  BLASTSIM_CHARGE_LEDGER(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(ChargeLedgers, BLASTSIM_CHARGE_LEDGER(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_CONST_GROUP(ChargeCellParams, BLASTSIM_CHARGE_CELL_PARAMS)
+BLASTSIM_VIEW_GROUP(ChargeLedgers, BLASTSIM_CHARGE_LEDGER)
 
 //! The charge cells of the grid.
 struct ChargeCells {

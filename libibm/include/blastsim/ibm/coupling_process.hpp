@@ -15,11 +15,6 @@
 #include <array>
 #include <limits>
 
-namespace blastsim {
-class CheckpointWriter;
-class CheckpointReader;
-}  // namespace blastsim
-
 namespace blastsim::ibm {
 
 //! Cumulative effect of cells changing state (covered by rock, or uncovered) since the first rock_to_gas().

@@ -33,24 +33,10 @@ namespace blastsim::ibm {
   X(int, key, "cell key of each record (INT_MAX: none), sorted")   \
   X(int, record, "the record at each sorted position")
 
-struct CrackJunctionPlaces {
-  BLASTSIM_CRACK_JUNCTION_PLACES(BLASTSIM_CONST_VIEW_MEMBER)
-};
-template <Access A>
-struct CrackMouthCells {
-  BLASTSIM_CRACK_MOUTH_CELLS(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackMouthCells, BLASTSIM_CRACK_MOUTH_CELLS(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CrackHandovers {
-  BLASTSIM_CRACK_HANDOVERS(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackHandovers, BLASTSIM_CRACK_HANDOVERS(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CrackDepositOrder {
-  BLASTSIM_CRACK_DEPOSIT_ORDER(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackDepositOrder, BLASTSIM_CRACK_DEPOSIT_ORDER(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_CONST_GROUP(CrackJunctionPlaces, BLASTSIM_CRACK_JUNCTION_PLACES)
+BLASTSIM_VIEW_GROUP(CrackMouthCells, BLASTSIM_CRACK_MOUTH_CELLS)
+BLASTSIM_VIEW_GROUP(CrackHandovers, BLASTSIM_CRACK_HANDOVERS)
+BLASTSIM_VIEW_GROUP(CrackDepositOrder, BLASTSIM_CRACK_DEPOSIT_ORDER)
 
 //! Aperture of a crack from the mean normal opening o of its faces [m] and the residual aperture w_r [m]:
 //! w = w_r + o when open; closed (o < 0: the faces pressed together), w = w_r exp(o / w_r), which joins

@@ -203,39 +203,13 @@ BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat,
 //! Per junction: what went into its reservoir since the last clear (mass, energy, products).
 #define BLASTSIM_CRACK_DEPOSITS(X) X(ChannelConserved, deposit, "m, E, m1, am [per m of thickness]")
 
-struct CrackGraph {
-  BLASTSIM_CRACK_GRAPH(BLASTSIM_CONST_VIEW_MEMBER)
-};
-template <Access A>
-struct CrackGeometry {
-  BLASTSIM_CRACK_GEOMETRY(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackGeometry, BLASTSIM_CRACK_GEOMETRY(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CrackSegments {
-  BLASTSIM_CRACK_SEGMENTS(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackSegments, BLASTSIM_CRACK_SEGMENTS(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CrackEndStates {
-  BLASTSIM_CRACK_END_STATES(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackEndStates, BLASTSIM_CRACK_END_STATES(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CrackEndFluxes {
-  BLASTSIM_CRACK_END_FLUXES(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackEndFluxes, BLASTSIM_CRACK_END_FLUXES(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CrackMouths {
-  BLASTSIM_CRACK_MOUTHS(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackMouths, BLASTSIM_CRACK_MOUTHS(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CrackDeposits {
-  BLASTSIM_CRACK_DEPOSITS(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(CrackDeposits, BLASTSIM_CRACK_DEPOSITS(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_CONST_GROUP(CrackGraph, BLASTSIM_CRACK_GRAPH)
+BLASTSIM_VIEW_GROUP(CrackGeometry, BLASTSIM_CRACK_GEOMETRY)
+BLASTSIM_VIEW_GROUP(CrackSegments, BLASTSIM_CRACK_SEGMENTS)
+BLASTSIM_VIEW_GROUP(CrackEndStates, BLASTSIM_CRACK_END_STATES)
+BLASTSIM_VIEW_GROUP(CrackEndFluxes, BLASTSIM_CRACK_END_FLUXES)
+BLASTSIM_VIEW_GROUP(CrackMouths, BLASTSIM_CRACK_MOUTHS)
+BLASTSIM_VIEW_GROUP(CrackDeposits, BLASTSIM_CRACK_DEPOSITS)
 
 //! The physical parameters of the channel flow (CrackGasOptions' kernel part).
 struct ChannelFlowParams {

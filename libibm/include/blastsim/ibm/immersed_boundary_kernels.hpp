@@ -42,21 +42,9 @@ struct TransitionLedger {
 };
 #define BLASTSIM_IBM_LEDGER(X) X(TransitionLedger, transitions, "per cell i + nx j, since the first update")
 
-template <Access A>
-struct FaceOwners {
-  BLASTSIM_IBM_FACE_OWNERS(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(FaceOwners, BLASTSIM_IBM_FACE_OWNERS(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct CellUpdate {
-  BLASTSIM_IBM_CELL_UPDATE(BLASTSIM_FIELD_MEMBER)
-  BLASTSIM_READ_CONVERSION(CellUpdate, BLASTSIM_IBM_CELL_UPDATE(BLASTSIM_MEMBER_NAME))
-};
-template <Access A>
-struct ImmersedLedger {
-  BLASTSIM_IBM_LEDGER(BLASTSIM_VIEW_MEMBER)
-  BLASTSIM_READ_CONVERSION(ImmersedLedger, BLASTSIM_IBM_LEDGER(BLASTSIM_MEMBER_NAME))
-};
+BLASTSIM_FIELD_GROUP(FaceOwners, BLASTSIM_IBM_FACE_OWNERS)
+BLASTSIM_FIELD_GROUP(CellUpdate, BLASTSIM_IBM_CELL_UPDATE)
+BLASTSIM_VIEW_GROUP(ImmersedLedger, BLASTSIM_IBM_LEDGER)
 
 //! The face points of one kind (face 0: x-faces at (x_min + i dx, y_min + (j + 1/2) dy); 1: y-faces at
 //! (x_min + (i + 1/2) dx, y_min + j dy)) inside the bounding box of the triangle with nodes (x, y): indices

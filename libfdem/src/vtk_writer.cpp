@@ -1,13 +1,10 @@
-//! \file vtk_rock_writer.cpp
-//! \brief .vtu writers for the rock through vtkXMLUnstructuredGridWriter (compiled only when VTK is available).
-#include "vtk_rock_writer.hpp"
+//! \file vtk_writer.cpp
+//! \brief The rock's .vtu files through vtkXMLUnstructuredGridWriter (VTK in the build: BLASTSIM_HAVE_VTK).
+#include "blastsim/fdem/vtk_writer.hpp"
 
-#include "blastsim/core/error.hpp"
-#include "output_files.hpp"
+#include "blastsim/core/output_files.hpp"
 
 #include <cmath>
-#include <cerrno>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -24,7 +21,7 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 #endif
 
-namespace blastsim::app {
+namespace blastsim::fdem {
 
 #if defined(BLASTSIM_HAVE_VTK)
 namespace {
@@ -37,22 +34,13 @@ vtkNew<vtkDoubleArray> array(const char* name, int components, vtkIdType tuples)
 }
 
 void write_grid(const std::string& path, vtkUnstructuredGrid* grid) {
-  const std::string tmp = path + ".tmp";
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetFileName(tmp.c_str());
   writer->SetInputData(grid);
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
-  // VTK reports a full disk through its error code, not always through Write()'s result: check both, and
-  // never rename a failed file into place.
-  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
-    throw OutputError("VTK could not write '" + tmp + "' (VTK error code " + std::to_string(writer->GetErrorCode()) +
-                      "; " + std::strerror(errno) + ")");
-  commit_file(tmp, path);
+  write_vtk_atomically(writer.Get(), path);
 }
 }  // namespace
 
-void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& s, const RockCellFields& cells) {
+void write_rock_vtu(const std::string& path, const RockSnapshot& s, const RockCellFields& cells) {
   const vtkIdType nodes = static_cast<vtkIdType>(s.x.size()), triangles = nodes / 3;
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -97,7 +85,7 @@ void write_rock_vtu(const std::string& path, const fdem::RockSnapshot& s, const 
   write_grid(path, grid);
 }
 
-void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s, const ibm::CrackSegmentFields& gas) {
+void write_joints_vtu(const std::string& path, const RockSnapshot& s, const std::vector<JointField>& fields) {
   const vtkIdType joints = static_cast<vtkIdType>(s.joint_nodes.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -120,24 +108,21 @@ void write_joints_vtu(const std::string& path, const fdem::RockSnapshot& s, cons
   grid->SetPoints(points);
   grid->GetCellData()->AddArray(damage);
   grid->GetCellData()->AddArray(broken);
-  auto add = [&](const char* name, const std::vector<double>& v) {
-    if (v.size() != static_cast<std::size_t>(joints)) return;
-    auto a = array(name, 1, joints);
-    for (vtkIdType j = 0; j < joints; ++j) a->SetValue(j, v[j]);
+  for (const JointField& f : fields) {
+    if (f.values.size() != static_cast<std::size_t>(joints)) continue;
+    auto a = array(f.name.c_str(), 1, joints);
+    for (vtkIdType j = 0; j < joints; ++j) a->SetValue(j, f.values[j]);
     grid->GetCellData()->AddArray(a);
-  };
-  add("aperture", gas.aperture);
-  add("gas_pressure", gas.gas_pressure);
-  add("gas_mass", gas.gas_mass);
+  }
   write_grid(path, grid);
 }
 #else
-void write_rock_vtu(const std::string& path, const fdem::RockSnapshot&, const RockCellFields&) {
+void write_rock_vtu(const std::string& path, const RockSnapshot&, const RockCellFields&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
-void write_joints_vtu(const std::string& path, const fdem::RockSnapshot&, const ibm::CrackSegmentFields&) {
+void write_joints_vtu(const std::string& path, const RockSnapshot&, const std::vector<JointField>&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
 #endif
 
-}  // namespace blastsim::app
+}  // namespace blastsim::fdem

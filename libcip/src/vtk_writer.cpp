@@ -1,12 +1,9 @@
-//! \file vtk_gas_writer.cpp
-//! \brief .vti writer through vtkXMLImageDataWriter (compiled only when VTK is available).
-#include "vtk_gas_writer.hpp"
+//! \file vtk_writer.cpp
+//! \brief The gas's .vti files through vtkXMLImageDataWriter (VTK in the build: BLASTSIM_HAVE_VTK).
+#include "blastsim/cip/vtk_writer.hpp"
 
-#include "blastsim/core/error.hpp"
-#include "output_files.hpp"
+#include "blastsim/core/output_files.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -19,7 +16,7 @@
 #include <vtkXMLImageDataWriter.h>
 #endif
 
-namespace blastsim::app {
+namespace blastsim::cip {
 
 #if defined(BLASTSIM_HAVE_VTK)
 bool vtk_available() { return true; }
@@ -35,7 +32,7 @@ void add_scalar(vtkImageData* image, const char* name, const std::vector<double>
 }
 }  // namespace
 
-void write_gas_vti(const std::string& path, const cip::GasGrid& grid, const cip::HostGasFields& h) {
+void write_gas_vti(const std::string& path, const GasGrid& grid, const HostGasFields& h) {
   vtkNew<vtkImageData> image;
   image->SetDimensions(grid.nx + 1, grid.ny + 1, 1);  // points; cells are the gas cells, i fastest
   image->SetOrigin(grid.x_min, grid.y_min, 0.0);
@@ -56,24 +53,15 @@ void write_gas_vti(const std::string& path, const cip::GasGrid& grid, const cip:
   for (size_t k = 0; k < h.active.size(); ++k) active->SetValue(static_cast<vtkIdType>(k), h.active[k]);
   image->GetCellData()->AddArray(active);
 
-  const std::string tmp = path + ".tmp";
   vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(tmp.c_str());
   writer->SetInputData(image);
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();  // raw binary
-  // VTK reports a full disk through its error code, not always through Write()'s result: check both, and
-  // never rename a failed file into place.
-  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
-    throw OutputError("VTK could not write '" + tmp + "' (VTK error code " + std::to_string(writer->GetErrorCode()) +
-                      "; " + std::strerror(errno) + ")");
-  commit_file(tmp, path);
+  write_vtk_atomically(writer.Get(), path);
 }
 #else
 bool vtk_available() { return false; }
-void write_gas_vti(const std::string& path, const cip::GasGrid&, const cip::HostGasFields&) {
+void write_gas_vti(const std::string& path, const GasGrid&, const HostGasFields&) {
   throw std::runtime_error("cannot write '" + path + "': this build has no VTK (BLASTSIM_ENABLE_VTK=OFF)");
 }
 #endif
 
-}  // namespace blastsim::app
+}  // namespace blastsim::cip
