@@ -113,6 +113,10 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
     return app::read_case(app::load_input(example, overrides));
   };
   CHECK(app::case_kind(app::load_input(example, {})) == app::CaseKind::coupled);
+  // The example's six rock probes and its monitor region, removed by empty arrays of tables.
+  CHECK(read({}).probes.rock_points.size() == 6);
+  CHECK(read({"probe.rock_point=[]"}).probes.rock_points.empty());
+  CHECK(read({"monitor.region=[]"}).monitor.regions.empty());
   CHECK_THROWS_WITH(read({"rock.pressure.0.boundary=\"hole\"", "rock.pressure.0.pressure=1e6"}),
                     Catch::Contains("rock.pressure"));
   CHECK_THROWS_WITH(read({"monitor.region.0.shape=\"ring\""}), Catch::Contains("monitor.region.0.shape"));

@@ -91,6 +91,17 @@ TEST_CASE("Command-line overrides replace values, reach array entries and create
   CHECK(contains(error_of({"novalue"}), "section.key=value"));
 }
 
+TEST_CASE("An empty array of tables is none", "[app][input]") {
+  // `gas.region = []` replaces the file's one region by none; `probe.point = []` and `probe.line = []` give no probes.
+  const app::Case c = read(kValid, {"gas.region=[]", "probe.point=[]", "probe.line=[]"});
+  CHECK(c.gas.regions.empty());
+  CHECK(c.probes.points.empty());
+  CHECK(c.probes.lines.empty());
+  CHECK(c.gas.initial_state(0.5, 0.25).density == 1.2);  // the ambient state everywhere
+  // An array of something else is still refused, naming the key.
+  CHECK(contains(error_of({"probe.point=[1, 2]"}), "probe.point must be an array of tables"));
+}
+
 TEST_CASE("Bad input: unknown keys", "[app][input][bad]") {
   CHECK(contains(error_of({"gas.gama=1.4"}), "unknown key 'gas.gama'"));
   CHECK(contains(error_of({"gas.gama=1.4"}), "allowed here: gamma"));
