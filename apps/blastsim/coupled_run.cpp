@@ -29,7 +29,8 @@ class CouplingSeries {
   CouplingSeries(const Case& c, cip::GasSolver& gas, fdem::RockSolver& rock, ibm::GasRockCoupler& coupler,
                  bool resume)
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler),
-        file_((make_output_dir(c.output.directory) / "coupling_series.csv").string(), header(c), resume),
+        file_((make_output_dir(c.output.directory) / "coupling_series.csv").string(),
+              csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) { columns(o); }), resume),
         initial_(ibm::initial_energy(gas, rock)) {}
   void write_checkpoint(CheckpointWriter& w) {
     w.value("out.coupling.initial", initial_);
@@ -41,28 +42,11 @@ class CouplingSeries {
     file_.read_checkpoint(r, "out.coupling.csv_size");
   }
 
-  //! Writes one row (ibm::coupled_budget(): docs/validation.md S4); returns the budget residual relative to
-  //! the initial energy plus what the charges released.
+  //! Writes one row; returns the budget residual relative to the initial energy plus what the charges released.
   double write() {
-    const ibm::CoupledBudget b = ibm::coupled_budget(gas_, rock_, coupler_, initial_);
-    const cip::GasTotals& g = b.gas;
-    const fdem::RockEnergies& e = b.rock;
-    const ibm::CouplingDiagnostics& d = b.coupling;
-    std::string row = fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},"
-                         "{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{},{:.6e},{},{},{:.9e},{:.9e},{:.9e},{},{},{:.6e}",
-                         gas_.steps(), gas_.time(), g.mass, g.internal_energy, g.kinetic_energy, b.gas_energy_out, e.kinetic,
-                         e.strain, e.joint_work, e.fracture_dissipated, e.contact_work, e.damping_dissipated,
-                         d.gas_work_on_rock, b.other_external_work, d.transitions.energy_created, b.residual,
-                         b.residual / (initial_ + b.charge_energy), d.gas_force_on_rock[0], d.gas_force_on_rock[1], e.broken_joints,
-                         e.crack_length, d.transitions.covered, d.transitions.uncovered, b.immersed_face_work,
-                         d.crack.mass, d.crack.energy, d.crack.gas_segments, d.crack.wet_segments, d.crack.max_pressure);
-    row += fmt::format(",{:.9e}", d.charges.detonation_energy);
-    for (const MonitorSettings::Region& r : c_.monitor.regions) {
-      const cip::GasTotals t = coupler_.gas_in(r.where);
-      row += fmt::format(",{:.9e},{:.9e}", t.mass, t.total_energy());
-    }
-    file_.row(row);
-    return b.residual / (initial_ + b.charge_energy);
+    double relative = 0;
+    file_.row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { relative = columns(o); }));
+    return relative;
   }
 
  private:
@@ -73,16 +57,34 @@ class CouplingSeries {
   CsvSeries file_;
   double initial_ = 0;
 
-  static std::string header(const Case& c) {
-    std::string h = "step,time_s,gas_mass_kg_per_m,gas_internal_J_per_m,gas_kinetic_J_per_m,gas_energy_out_J_per_m,"
-                    "rock_kinetic_J_per_m,rock_strain_J_per_m,joint_work_J_per_m,fracture_dissipated_J_per_m,"
-                    "contact_work_J_per_m,damping_dissipated_J_per_m,gas_work_on_rock_J_per_m,other_external_work_J_per_m,"
-                    "transition_energy_J_per_m,budget_residual_J_per_m,budget_relative,gas_force_x_N_per_m,"
-                    "gas_force_y_N_per_m,broken_joints,crack_length_m,cells_covered,cells_uncovered,"
-                    "immersed_face_work_J_per_m,crack_gas_mass_kg_per_m,crack_gas_energy_J_per_m,crack_gas_segments,"
-                    "crack_wet_segments,crack_gas_pressure_max_Pa,charge_detonation_energy_J_per_m";
-    for (const MonitorSettings::Region& r : c.monitor.regions) h += fmt::format(",{0}_mass_kg_per_m,{0}_energy_J_per_m", r.name);
-    return h;
+  //! The columns (ibm::coupled_budget(): docs/validation.md S4); returns the relative budget residual.
+  double columns(CsvRecord& o) const {
+    const ibm::CoupledBudget b = o.header() ? ibm::CoupledBudget{} : ibm::coupled_budget(gas_, rock_, coupler_, initial_);
+    const cip::GasTotals& g = b.gas;
+    const fdem::RockEnergies& e = b.rock;
+    const ibm::CouplingDiagnostics& d = b.coupling;
+    const double relative = o.header() ? 0.0 : b.residual / (initial_ + b.charge_energy);
+    o.integer("step", gas_.steps()).real("time_s", gas_.time()).real("gas_mass_kg_per_m", g.mass);
+    o.real("gas_internal_J_per_m", g.internal_energy).real("gas_kinetic_J_per_m", g.kinetic_energy);
+    o.real("gas_energy_out_J_per_m", b.gas_energy_out).real("rock_kinetic_J_per_m", e.kinetic);
+    o.real("rock_strain_J_per_m", e.strain).real("joint_work_J_per_m", e.joint_work);
+    o.real("fracture_dissipated_J_per_m", e.fracture_dissipated).real("contact_work_J_per_m", e.contact_work);
+    o.real("damping_dissipated_J_per_m", e.damping_dissipated).real("gas_work_on_rock_J_per_m", d.gas_work_on_rock);
+    o.real("other_external_work_J_per_m", b.other_external_work);
+    o.real("transition_energy_J_per_m", d.transitions.energy_created).real("budget_residual_J_per_m", b.residual, 6);
+    o.real("budget_relative", relative, 6).real("gas_force_x_N_per_m", d.gas_force_on_rock[0], 6);
+    o.real("gas_force_y_N_per_m", d.gas_force_on_rock[1], 6).integer("broken_joints", e.broken_joints);
+    o.real("crack_length_m", e.crack_length, 6).integer("cells_covered", d.transitions.covered);
+    o.integer("cells_uncovered", d.transitions.uncovered).real("immersed_face_work_J_per_m", b.immersed_face_work);
+    o.real("crack_gas_mass_kg_per_m", d.crack.mass).real("crack_gas_energy_J_per_m", d.crack.energy);
+    o.integer("crack_gas_segments", d.crack.gas_segments).integer("crack_wet_segments", d.crack.wet_segments);
+    o.real("crack_gas_pressure_max_Pa", d.crack.max_pressure, 6);
+    o.real("charge_detonation_energy_J_per_m", d.charges.detonation_energy);
+    for (const MonitorSettings::Region& r : c_.monitor.regions) {
+      const cip::GasTotals t = o.header() ? cip::GasTotals{} : coupler_.gas_in(r.where);
+      o.real(r.name + "_mass_kg_per_m", t.mass).real(r.name + "_energy_J_per_m", t.total_energy());
+    }
+    return relative;
   }
 };
 
@@ -95,18 +97,15 @@ class BlastholeFiles {
       : c_(c), gas_(gas), rock_(rock), coupler_(coupler) {
     if (!c.monitor.blasthole) return;
     monitor_.emplace(c.monitor.blasthole->geometry, c.gas.grid, c.gas.ambient_pressure());
-    file_.emplace((make_output_dir(c.output.directory) / "wall_series.csv").string(), wall_header(), resume);
+    file_.emplace((make_output_dir(c.output.directory) / "wall_series.csv").string(),
+                  csv_text(CsvRecord::Mode::header, [](CsvRecord& o) { wall_columns(o, {}); }), resume);
   }
 
   void sample() {
     if (!monitor_ || gas_.time() < next_ - 1e-12 * c_.time.end) return;
     advance_schedule(next_, c_.monitor.blasthole->interval, gas_.time() + 1e-12 * c_.time.end);
     const ibm::BlastholeSample s = monitor_->sample(gas_, rock_, coupler_.crack_gas());
-    const double crack_outer = s.outer_crack_pressure, front = s.crack_gas_front;
-    file_->row(fmt::format("{:.9e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
-                           s.time, s.wall_pressure_mean, s.wall_pressure_min, s.wall_pressure_max, s.wall_stress_mean,
-                           s.wall_stress_min, s.wall_stress_max, s.wall_stress_spread, s.broken_joints, s.crack_length,
-                           s.outer_pressure_max, s.outer_speed_max, s.outer_flux_speed, crack_outer, front));
+    file_->row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { wall_columns(o, s); }));
   }
 
   //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
@@ -171,12 +170,17 @@ class BlastholeFiles {
   std::optional<CsvSeries> file_;
   double next_ = 0;  // time of the next sample [s]
 
-  static std::string wall_header() {
-    return "time_s,gas_pressure_wall_mean_Pa,gas_pressure_wall_min_Pa,gas_pressure_wall_max_Pa,"
-           "rock_radial_stress_wall_mean_Pa,rock_radial_stress_wall_min_Pa,rock_radial_stress_wall_max_Pa,"
-           "rock_radial_stress_wall_sector_spread,broken_joints,crack_length_m,outer_surface_gas_pressure_max_Pa,"
-           "outer_surface_gas_speed_max_m_per_s,outer_surface_gas_speed_flux_mean_m_per_s,"
-           "outer_surface_crack_gas_pressure_max_Pa,crack_gas_front_radius_m";
+  static void wall_columns(CsvRecord& o, const ibm::BlastholeSample& s) {
+    o.real("time_s", s.time).real("gas_pressure_wall_mean_Pa", s.wall_pressure_mean, 6);
+    o.real("gas_pressure_wall_min_Pa", s.wall_pressure_min, 6).real("gas_pressure_wall_max_Pa", s.wall_pressure_max, 6);
+    o.real("rock_radial_stress_wall_mean_Pa", s.wall_stress_mean, 6);
+    o.real("rock_radial_stress_wall_min_Pa", s.wall_stress_min, 6).real("rock_radial_stress_wall_max_Pa", s.wall_stress_max, 6);
+    o.real("rock_radial_stress_wall_sector_spread", s.wall_stress_spread, 4).integer("broken_joints", s.broken_joints);
+    o.real("crack_length_m", s.crack_length, 6).real("outer_surface_gas_pressure_max_Pa", s.outer_pressure_max, 6);
+    o.real("outer_surface_gas_speed_max_m_per_s", s.outer_speed_max, 6);
+    o.real("outer_surface_gas_speed_flux_mean_m_per_s", s.outer_flux_speed, 6);
+    o.real("outer_surface_crack_gas_pressure_max_Pa", s.outer_crack_pressure, 6);
+    o.real("crack_gas_front_radius_m", s.crack_gas_front, 6);
   }
 };
 

@@ -26,10 +26,7 @@ GasOutputs::GasOutputs(const Case& c, cip::GasSolver& solver, std::ostream& log,
     : c_(c), solver_(solver), log_(log), gas_alone_(gas_alone), dir_(make_output_dir(c.output.directory)),
       pvd_((dir_ / "gas.pvd").string()),
       totals_((dir_ / "gas_totals.csv").string(),
-              "step,time_s,dt_s,mass_kg_per_m,momentum_x_kg_per_s,momentum_y_kg_per_s,internal_energy_J_per_m,"
-              "kinetic_energy_J_per_m,total_energy_J_per_m,mass_out_kg_per_m,momentum_x_out_kg_per_s,"
-              "momentum_y_out_kg_per_s,energy_out_J_per_m,mass_balance_drift,energy_balance_drift",
-              resume) {
+              csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) { totals_columns(o, 0, {}, {}, {}); }), resume) {
   for (const ProbeSettings::Point& p : c.probes.points) {
     point_files_.emplace_back((dir_ / fmt::format("point_{}.csv", p.name)).string(), "t,x,y,rho,u,v,p,e", resume);
     next_point_.push_back(0.0);
@@ -155,14 +152,21 @@ void GasOutputs::monitor(double dt) {
   const cip::BoundaryOutflow& o = solver_.boundary_outflow();
   if (solver_.steps() == 0) initial_ = s;
   const cip::BalanceDrift drift = cip::balance_drift(s, o, initial_, solver_.positivity_energy());
-  totals_.row(fmt::format("{},{:.9e},{:.6e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},"
-                          "{:.12e},{:.6e},{:.6e}",
-                          solver_.steps(), solver_.time(), dt, s.mass, s.momentum_x, s.momentum_y, s.internal_energy,
-                          s.kinetic_energy, s.total_energy(), o.mass, o.momentum_x, o.momentum_y, o.energy, drift.mass,
-                          drift.energy));
+  totals_.row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& r) { totals_columns(r, dt, s, o, drift); }));
   if (!gas_alone_) return;  // coupled: rock moves gas in and out of cells; coupling_series.csv has the budget
   warn_once(mass_warned_, "mass", drift.mass);
   warn_once(energy_warned_, "energy", drift.energy);
+}
+
+void GasOutputs::totals_columns(CsvRecord& r, double dt, const cip::GasTotals& s, const cip::BoundaryOutflow& o,
+                                const cip::BalanceDrift& drift) const {
+  r.integer("step", solver_.steps()).real("time_s", solver_.time()).real("dt_s", dt, 6).real("mass_kg_per_m", s.mass, 12);
+  r.real("momentum_x_kg_per_s", s.momentum_x, 12).real("momentum_y_kg_per_s", s.momentum_y, 12);
+  r.real("internal_energy_J_per_m", s.internal_energy, 12).real("kinetic_energy_J_per_m", s.kinetic_energy, 12);
+  r.real("total_energy_J_per_m", s.total_energy(), 12).real("mass_out_kg_per_m", o.mass, 12);
+  r.real("momentum_x_out_kg_per_s", o.momentum_x, 12).real("momentum_y_out_kg_per_s", o.momentum_y, 12);
+  r.real("energy_out_J_per_m", o.energy, 12).real("mass_balance_drift", drift.mass, 6);
+  r.real("energy_balance_drift", drift.energy, 6);
 }
 
 void GasOutputs::warn_once(bool& warned, const char* what, double drift) {

@@ -3,6 +3,7 @@
 //! monitor (gas_totals.csv); shared by gas-only and coupled runs.
 #pragma once
 
+#include "blastsim/cip/balance.hpp"
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/core/checkpoint.hpp"
 #include "case.hpp"
@@ -55,6 +56,9 @@ class GasOutputs {
   //! drift of the balance (in domain + out - initial) / initial; a warning when it exceeds the threshold.
   void monitor(double dt);
   void warn_once(bool& warned, const char* what, double drift);
+  //! The columns of gas_totals.csv (CsvRecord, blastsim/core/output_files.hpp).
+  void totals_columns(CsvRecord& r, double dt, const cip::GasTotals& s, const cip::BoundaryOutflow& o,
+                      const cip::BalanceDrift& drift) const;
 
   const Case& c_;
   cip::GasSolver& solver_;

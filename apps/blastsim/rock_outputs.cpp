@@ -36,29 +36,17 @@ RockOutputs::RockOutputs(const Case& c, const fdem::RockModel& model, bool resum
     : c_(c), solver_(*model.solver), velocity_nodes_(model.velocity_nodes), dir_(make_output_dir(c.output.directory)),
       rock_pvd_((dir_ / "rock.pvd").string()), joints_pvd_((dir_ / "joints.pvd").string()),
       series_((dir_ / "rock_series.csv").string(),
-              [&] {
-                std::string h = "step,time_s,kinetic_J_per_m,strain_J_per_m,joint_work_J_per_m,"
-                                "fracture_dissipated_J_per_m,contact_work_J_per_m,friction_dissipated_J_per_m,"
-                                "damping_dissipated_J_per_m,external_work_J_per_m,energy_balance_J_per_m,"
-                                "broken_joints,crack_length_m,radiated_J_per_m";
-                for (size_t k = 0; k < model.velocity_nodes.size(); ++k)
-                  h += fmt::format(",velocity{0}_reaction_x_N_per_m,velocity{0}_reaction_y_N_per_m", k);
-                return h;
-              }(),
+              csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) {
+                series_columns(o, {}, 0, std::vector<std::array<double, 2>>(model.velocity_nodes.size()));
+              }),
               resume),
       e0_(solver_.energies()) {
-  if (c.analysis.fragments) {
-    std::string h = "step,time_s,fragments,sized,fines_mass_fraction,largest_mass_fraction,x20_m,x50_m,x80_m,"
-                    "oversize_fraction,swebrec_x50_m,swebrec_xmax_m,swebrec_b,swebrec_r2,rosin_rammler_x50_m,"
-                    "rosin_rammler_n,rosin_rammler_r2";
-    for (size_t k = 0; k < c.analysis.holes.size(); ++k) h += fmt::format(",hole{0}_crushed_radius_m,hole{0}_cracked_radius_m", k);
-    fragmentation_.emplace((dir_ / "fragmentation_series.csv").string(), h, resume);
-  }
-  if (!c.probes.rock_points.empty()) {
-    std::string h = "step,time_s";
-    for (const auto& p : c.probes.rock_points) h += fmt::format(",{0}_vx_m_per_s,{0}_vy_m_per_s,{0}_speed_m_per_s", p.name);
-    probes_.emplace((dir_ / "rock_probes.csv").string(), h, resume);
-  }
+  if (c.analysis.fragments)
+    fragmentation_.emplace((dir_ / "fragmentation_series.csv").string(),
+                           csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) { fragmentation_columns(o); }), resume);
+  if (!c.probes.rock_points.empty())
+    probes_.emplace((dir_ / "rock_probes.csv").string(),
+                    csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) { probe_columns(o); }), resume);
   // Damage rings: twice the mean joint length unless given (a ring then holds joints of every orientation).
   const double joint = fdem::mean_joint_length(model.topology);
   ring_width_ = c.analysis.ring_width > 0 ? c.analysis.ring_width : (joint > 0 ? 2 * joint : 1.0);
@@ -153,14 +141,23 @@ void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& l
       out << fmt::format("{:.9e},{:.9e},{:.9e},{:.9e}\n", d.size[i], d.passing[i], sw, rr);
     }
   });
-  std::string row = fmt::format("{},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},"
-                                "{:.6e},{:.6e}",
-                                solver_.steps(), solver_.time(), d.fragments, d.sized,
-                                d.total_mass > 0 ? d.fines_mass / d.total_mass : 0.0, largest_fraction_, d.x20, d.x50, d.x80,
-                                d.oversize_fraction, d.swebrec.x50, d.swebrec.xmax, d.swebrec.b, d.swebrec.r_squared,
-                                d.rosin_rammler.x50, d.rosin_rammler.n, d.rosin_rammler.r_squared);
-  for (const fdem::DamageZone& z : zones_) row += fmt::format(",{:.6e},{:.6e}", z.crushed_radius, z.cracked_radius);
-  fragmentation_->row(row);
+  fragmentation_->row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { fragmentation_columns(o); }));
+}
+
+void RockOutputs::fragmentation_columns(CsvRecord& o) const {
+  const fdem::SizeDistribution& d = sizes_;
+  o.integer("step", solver_.steps()).real("time_s", solver_.time()).integer("fragments", d.fragments);
+  o.integer("sized", d.sized).real("fines_mass_fraction", d.total_mass > 0 ? d.fines_mass / d.total_mass : 0.0, 6);
+  o.real("largest_mass_fraction", largest_fraction_, 6).real("x20_m", d.x20, 6).real("x50_m", d.x50, 6);
+  o.real("x80_m", d.x80, 6).real("oversize_fraction", d.oversize_fraction, 6).real("swebrec_x50_m", d.swebrec.x50, 6);
+  o.real("swebrec_xmax_m", d.swebrec.xmax, 6).real("swebrec_b", d.swebrec.b, 6).real("swebrec_r2", d.swebrec.r_squared, 6);
+  o.real("rosin_rammler_x50_m", d.rosin_rammler.x50, 6).real("rosin_rammler_n", d.rosin_rammler.n, 6);
+  o.real("rosin_rammler_r2", d.rosin_rammler.r_squared, 6);
+  for (size_t k = 0; k < c_.analysis.holes.size(); ++k) {
+    const fdem::DamageZone z = o.header() ? fdem::DamageZone{} : zones_[k];
+    o.real(fmt::format("hole{}_crushed_radius_m", k), z.crushed_radius, 6);
+    o.real(fmt::format("hole{}_cracked_radius_m", k), z.cracked_radius, 6);
+  }
 }
 
 std::string RockOutputs::summary() const {
@@ -230,21 +227,36 @@ void RockOutputs::write_summary() const {
 fdem::RockEnergies RockOutputs::monitor() {
   const fdem::RockEnergies e = solver_.energies();
   const double balance = fdem::energy_residual(e, e0_);
-  std::string reactions;  // of the supports on the loaded nodes: the platen force, with the sign of the axes
-  for (const std::array<double, 2>& f : solver_.support_reactions(velocity_nodes_))
-    reactions += fmt::format(",{:.9e},{:.9e}", f[0], f[1]);
-  if (probes_) {
-    std::string row = fmt::format("{},{:.9e}", solver_.steps(), solver_.time());
-    for (const fdem::ProbeSample& p : solver_.probe_samples())
-      row += fmt::format(",{:.6e},{:.6e},{:.6e}", p.vx, p.vy, std::hypot(p.vx, p.vy));
-    probes_->row(row);
-  }
-  series_.row(fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{},{:.6e},{:.9e}",
-                         solver_.steps(), solver_.time(), e.kinetic, e.strain, e.joint_work, e.fracture_dissipated,
-                         e.contact_work, e.friction_dissipated, e.damping_dissipated, e.external_work, balance,
-                         e.broken_joints, e.crack_length, -e.boundary_work) +
-              reactions);
+  // the support reactions on the loaded nodes: the platen force, with the sign of the axes
+  const std::vector<std::array<double, 2>> reactions = solver_.support_reactions(velocity_nodes_);
+  if (probes_) probes_->row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { probe_columns(o); }));
+  series_.row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { series_columns(o, e, balance, reactions); }));
   return e;
+}
+
+void RockOutputs::series_columns(CsvRecord& o, const fdem::RockEnergies& e, double balance,
+                                 const std::vector<std::array<double, 2>>& reactions) const {
+  o.integer("step", solver_.steps()).real("time_s", solver_.time()).real("kinetic_J_per_m", e.kinetic);
+  o.real("strain_J_per_m", e.strain).real("joint_work_J_per_m", e.joint_work);
+  o.real("fracture_dissipated_J_per_m", e.fracture_dissipated).real("contact_work_J_per_m", e.contact_work);
+  o.real("friction_dissipated_J_per_m", e.friction_dissipated).real("damping_dissipated_J_per_m", e.damping_dissipated);
+  o.real("external_work_J_per_m", e.external_work).real("energy_balance_J_per_m", balance, 6);
+  o.integer("broken_joints", e.broken_joints).real("crack_length_m", e.crack_length, 6);
+  o.real("radiated_J_per_m", -e.boundary_work);
+  for (size_t k = 0; k < reactions.size(); ++k)
+    o.real(fmt::format("velocity{}_reaction_x_N_per_m", k), reactions[k][0])
+        .real(fmt::format("velocity{}_reaction_y_N_per_m", k), reactions[k][1]);
+}
+
+void RockOutputs::probe_columns(CsvRecord& o) const {
+  o.integer("step", solver_.steps()).real("time_s", solver_.time());
+  const std::vector<fdem::ProbeSample> p = o.header() ? std::vector<fdem::ProbeSample>(c_.probes.rock_points.size())
+                                                      : solver_.probe_samples();
+  for (size_t k = 0; k < p.size(); ++k) {
+    const std::string& name = c_.probes.rock_points[k].name;
+    o.real(name + "_vx_m_per_s", p[k].vx, 6).real(name + "_vy_m_per_s", p[k].vy, 6);
+    o.real(name + "_speed_m_per_s", std::hypot(p[k].vx, p[k].vy), 6);
+  }
 }
 
 }  // namespace blastsim::app

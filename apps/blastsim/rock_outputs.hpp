@@ -51,6 +51,11 @@ class RockOutputs {
 
  private:
   void analyse(const fdem::RockSnapshot& s, const std::vector<int>& labels);  //!< the analysis files of a snapshot
+  // the columns of rock_series.csv, fragmentation_series.csv and rock_probes.csv (CsvRecord, blastsim/core/output_files.hpp)
+  void series_columns(CsvRecord& o, const fdem::RockEnergies& e, double balance,
+                      const std::vector<std::array<double, 2>>& reactions) const;
+  void fragmentation_columns(CsvRecord& o) const;
+  void probe_columns(CsvRecord& o) const;
   const Case& c_;
   fdem::RockSolver& solver_;
   const std::vector<std::vector<int>>& velocity_nodes_;

@@ -128,6 +128,47 @@ class PvdSeries {
   Entries entries_;
 };
 
+//! One row of a CSV file with each column named where its value is given: a writer lists its columns once,
+//! in a function that fills a CsvRecord, and takes both its header (Mode::header: the names) and its rows
+//! (Mode::row: the values) from that list, so the two cannot drift apart (csv_text()).
+class CsvRecord {
+ public:
+  enum class Mode { header, row };
+  explicit CsvRecord(Mode mode) : header_(mode == Mode::header) {}
+  //! True while collecting the header: the values are not read, so a caller may pass zeros.
+  bool header() const { return header_; }
+  //! A real column, in scientific notation with `digits` after the point (printf's %.*e).
+  CsvRecord& real(const std::string& name, double value, int digits = 9) {
+    char text[64];
+    return add(name, [&] { return std::string(text, std::snprintf(text, sizeof text, "%.*e", digits, value)); });
+  }
+  //! An integer column.
+  CsvRecord& integer(const std::string& name, long long value) {
+    return add(name, [&] { return std::to_string(value); });
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  template <class Value>
+  CsvRecord& add(const std::string& name, const Value& value) {
+    if (!first_) text_ += ',';
+    first_ = false;
+    text_ += header_ ? name : value();
+    return *this;
+  }
+  bool header_;
+  bool first_ = true;
+  std::string text_;
+};
+
+//! The header, or one row, of a CSV file whose columns `fill(CsvRecord&)` adds.
+template <class Fill>
+std::string csv_text(CsvRecord::Mode mode, Fill&& fill) {
+  CsvRecord r(mode);
+  fill(r);
+  return r.text();
+}
+
 //! A CSV time series that grows by rows. Rows are flushed as written; on a restart the file is cut back to
 //! the size it had at the checkpoint and grows from there, so it reads as if the run had never stopped.
 class CsvSeries {
