@@ -12,8 +12,9 @@ from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLUnstructuredGridRea
 
 
 def read_csv(path):
-    """Columns of a CSV file keyed by header name: numpy arrays, or lists of strings for a column that is not
-    numeric (a probe's name). None if the file is missing or has no rows."""
+    """Columns of a CSV file keyed by header name: numpy arrays (an empty field, a quantity that could not be
+    computed, reads as NaN), or lists of strings for a column that is not numeric (a probe's name). None if the
+    file is missing or has no rows."""
     if not os.path.exists(path):
         return None
     with open(path, newline="") as f:
@@ -24,7 +25,7 @@ def read_csv(path):
     for k, name in enumerate(rows[0]):
         values = [r[k] for r in rows[1:]]
         try:
-            cols[name] = np.array([float(v) for v in values])
+            cols[name] = np.array([float(v) if v != "" else np.nan for v in values])
         except ValueError:
             cols[name] = values
     return cols

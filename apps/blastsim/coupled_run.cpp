@@ -45,7 +45,7 @@ class CouplingSeries {
   //! Writes one row; returns the budget residual relative to the initial energy plus what the charges released.
   double write() {
     double relative = 0;
-    file_.row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { relative = columns(o); }));
+    file_.row_of([&](CsvRecord& o) { relative = columns(o); });
     return relative;
   }
 
@@ -105,7 +105,7 @@ class BlastholeFiles {
     if (!monitor_ || gas_.time() < next_ - 1e-12 * c_.time.end) return;
     advance_schedule(next_, c_.monitor.blasthole->interval, gas_.time() + 1e-12 * c_.time.end);
     const ibm::BlastholeSample s = monitor_->sample(gas_, rock_, coupler_.crack_gas());
-    file_->row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { wall_columns(o, s); }));
+    file_->row_of([&](CsvRecord& o) { wall_columns(o, s); });
   }
 
   //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
@@ -156,6 +156,9 @@ class BlastholeFiles {
     next_ = r.value<double>("out.blasthole.next");
     if (!std::isfinite(next_)) r.fail("out.blasthole.next", "not finite");
     const ibm::BlastholeEvents ev = r.value<ibm::BlastholeEvents>("out.blasthole.events");
+    for (double v : {ev.first_crack, ev.ejection, ev.ejection_speed, ev.ejection_pressure, ev.jet_speed, ev.jet_time,
+                     ev.crack_arrival, ev.crack_arrival_pressure})
+      if (!std::isfinite(v)) r.fail("out.blasthole.events", "holds a time, speed or pressure that is not finite");
     if (!monitor_) return;
     monitor_->restore(ev);
     file_->read_checkpoint(r, "out.blasthole.csv_size");
@@ -252,12 +255,17 @@ class ChargeFiles {
   std::vector<double> peak_, peak_time_;  // per charge: the largest borehole pressure sampled [Pa] and when [s]
 };
 
-//! The case as the checkpoint records it: the resolved input, less the keys a restart may change.
+//! The case as the checkpoint records it: the resolved input, less the keys a restart may change, and without
+//! the echo's "(default)" marks (a default written out is the same input).
 std::string checkpoint_case_text(const Case& c) {
   std::string text;
   const std::set<std::string> may_change{"time.end", "time.max_steps", "output.progress_interval", "output.directory"};
-  for (const EchoLine& line : c.echo)
-    if (!may_change.count(line.key)) text += line.text + "\n";
+  const std::string mark = kDefaultMark;
+  for (const EchoLine& line : c.echo) {
+    if (may_change.count(line.key)) continue;
+    const bool marked = line.text.size() >= mark.size() && line.text.compare(line.text.size() - mark.size(), mark.size(), mark) == 0;
+    text += (marked ? line.text.substr(0, line.text.size() - mark.size()) : line.text) + "\n";
+  }
   return text;
 }
 
@@ -346,8 +354,9 @@ class CoupledRunOutputs : public RunOutputs {
     w.value("run.warned", static_cast<int>(warned_));
     w.commit();
   }
-  //! Restores everything from a checkpoint accepted by open_checkpoint().
-  void read_checkpoint(CheckpointReader& r) {
+  //! Restores everything from a checkpoint; `continue_outputs`: then cut the CSVs back and rewrite the
+  //! collections to it (CheckpointReader::finish()).
+  void read_checkpoint(CheckpointReader& r, bool continue_outputs) {
     gas_.read_checkpoint(r);
     rock_.read_checkpoint(r);
     coupler_.read_checkpoint(r);
@@ -357,7 +366,7 @@ class CoupledRunOutputs : public RunOutputs {
     blasthole_.read_checkpoint(r);
     charges_.read_checkpoint(r);
     warned_ = r.value<int>("run.warned") != 0;
-    r.finish();
+    r.finish(continue_outputs);
     log_ << fmt::format("restarted from {} at step {} (t = {:.6e} s)\n", checkpoint_path_, gas_.steps(), gas_.time());
   }
 
@@ -461,8 +470,18 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
     check_same_case(reader->text("case"), checkpoint_case_text(c), checkpoint_path);
   }
   CoupledRunOutputs outputs(c, gas, rock, coupler, model, log, resume);
-  if (resume) outputs.read_checkpoint(*reader);
-  else outputs.start();
+  if (resume) {
+    // A finished run's checkpoint (at or past time.end) is read and checked, then nothing is changed.
+    const bool finished = reader->value<double>("gas.time") >= c.time.end * (1 - 1e-12);
+    outputs.read_checkpoint(*reader, !finished);
+    if (finished) {
+      log << fmt::format("--restart: the checkpoint is at t = {:.6e} s, at or past time.end = {:g} s: nothing to do; "
+                         "the outputs in {} are left as they are\n", gas.time(), c.time.end, c.output.directory);
+      return;
+    }
+  } else {
+    outputs.start();
+  }
   CoupledStepper stepper(c, gas, rock, coupler);
   run_loop(stepper, outputs, RunControl{c.time.end, c.time.max_steps, c.output.progress_interval}, log, options);
 }

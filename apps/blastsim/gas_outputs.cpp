@@ -60,6 +60,8 @@ void GasOutputs::read_checkpoint(CheckpointReader& r) {
   const std::array<int, 2> warned = r.value<std::array<int, 2>>("out.gas.warned");
   mass_warned_ = warned[0] != 0, energy_warned_ = warned[1] != 0;
   initial_ = r.value<cip::GasTotals>("out.gas.initial");
+  for (double v : {initial_.mass, initial_.momentum_x, initial_.momentum_y, initial_.internal_energy, initial_.kinetic_energy})
+    if (!std::isfinite(v)) r.fail("out.gas.initial", "holds a total that is not finite");
   next_point_ = r.host_array<double>("out.gas.next_point");
   const std::vector<std::uint8_t> done = r.host_array<std::uint8_t>("out.gas.line_done");
   size_t at = 0;
@@ -152,7 +154,7 @@ void GasOutputs::monitor(double dt) {
   const cip::BoundaryOutflow& o = solver_.boundary_outflow();
   if (solver_.steps() == 0) initial_ = s;
   const cip::BalanceDrift drift = cip::balance_drift(s, o, initial_, solver_.positivity_energy());
-  totals_.row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& r) { totals_columns(r, dt, s, o, drift); }));
+  totals_.row_of([&](CsvRecord& r) { totals_columns(r, dt, s, o, drift); });
   if (!gas_alone_) return;  // coupled: rock moves gas in and out of cells; coupling_series.csv has the budget
   warn_once(mass_warned_, "mass", drift.mass);
   warn_once(energy_warned_, "energy", drift.energy);

@@ -39,6 +39,13 @@ Case read_case(const toml::table& input) {
   for (size_t k = 0; k < c.probes.points.size(); ++k)
     check_interval(fmt::format("probe.point.{}.interval", k), c.probes.points[k].interval, c.time.end, false);
   if (c.monitor.blasthole) check_interval("monitor.blasthole.interval", c.monitor.blasthole->interval, c.time.end, false);
+  // A delay the step cannot resolve would shorten the step to it (the stepper lands on every initiation).
+  for (size_t k = 0; k < c.coupling.charges.size(); ++k) {
+    const double t = c.coupling.charges[k].initiation_time;
+    if (t > 0 && t < 1e-9 * c.time.end)
+      throw InputError(fmt::format("charge.{}.initiation_time = {:g} s: must be 0 or at least 1e-9 x time.end = {:g} s",
+                                   k, t, 1e-9 * c.time.end));
+  }
   root.finish();
   return c;
 }

@@ -42,6 +42,7 @@ void read_charges(TableReader& root, Case& c) {
       throw InputError(fmt::format("{}.initiation_point: only with initiation = \"point\" (this charge detonates at "
                                    "constant volume)", key));
     }
+    t.allow({"initiation_point"});
     t.finish();
     if (q.center[0] - q.hole_radius < g.x_min || q.center[0] + q.hole_radius > g.x_min + g.nx * g.dx ||
         q.center[1] - q.hole_radius < g.y_min || q.center[1] + q.hole_radius > g.y_min + g.ny * g.dy)

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace blastsim::app {
 
 cip::GasPoint GasSettings::initial_state(double x, double y) const {
@@ -27,6 +29,10 @@ double GasSettings::ambient_pressure() const { return eos.pressure(ambient.densi
 
 namespace {
 
+//! [m/s] the detonation velocities an explosive may have: commercial and military explosives detonate at about
+//! 1,500 to 9,000 m/s; outside these bounds a value is a typing error (it sets a point initiation's front).
+constexpr double kMinDetonationVelocity = 100.0, kMaxDetonationVelocity = 20000.0;
+
 //! [gas.explosive]: a preset (explosive = "ANFO") or the seven JWL parameters; checked by jwl_products(). Also
 //! the detonation velocity and energy of the explosive (given, or those of the JWL set's CJ state).
 cip::EquationOfState read_explosive(TableReader& x, GasSettings& g) {
@@ -39,7 +45,9 @@ cip::EquationOfState read_explosive(TableReader& x, GasSettings& g) {
     for (const char* k : keys)
       if (x.has(k))
         throw InputError(fmt::format("{}: give either 'preset' or the JWL parameters, not both ('{}' given)", x.path(), k));
+    x.allow({keys, keys + 7});
   } else {
+    x.allow({"preset"});
     p.A = x.number("A", "Pa", Range::non_negative());
     p.B = x.number("B", "Pa", Range::non_negative());
     p.C = x.number("C", "Pa", Range::non_negative());
@@ -57,7 +65,19 @@ cip::EquationOfState read_explosive(TableReader& x, GasSettings& g) {
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", x.path(), e.what()));
   }
-  g.detonation_velocity = x.number("detonation_velocity", "m/s", Range::positive(),
+  // The CJ state's D and E0 are defaults of keys the user may not have set: a set without a usable CJ state
+  // is named by its parameters.
+  const bool cj_ok = both || (cj.detonation_velocity >= kMinDetonationVelocity &&
+                              cj.detonation_velocity <= kMaxDetonationVelocity && cj.detonation_energy > 0 &&
+                              std::isfinite(cj.detonation_energy));
+  if (!cj_ok)
+    throw InputError(fmt::format("{}: the JWL set (A = {:g} Pa, B = {:g} Pa, C = {:g} Pa, R1 = {:g}, R2 = {:g}, w = {:g}, "
+                                 "rho0 = {:g} kg/m3) gives a Chapman-Jouguet state with D = {:g} m/s and E0 / rho0 = {:g} "
+                                 "J/kg, not an explosive's (D from {:g} to {:g} m/s, E0 > 0): check the parameters, or give "
+                                 "detonation_velocity and detonation_energy", x.path(), p.A, p.B, p.C, p.R1, p.R2, p.omega,
+                                 p.rho0, cj.detonation_velocity, cj.detonation_energy / p.rho0, kMinDetonationVelocity,
+                                 kMaxDetonationVelocity));
+  g.detonation_velocity = x.number("detonation_velocity", "m/s", Range{kMinDetonationVelocity, kMaxDetonationVelocity, false, false},
                                    both ? std::optional<double>() : cj.detonation_velocity);
   g.detonation_energy = x.number("detonation_energy", "J/kg", Range::positive(),
                                  both ? std::optional<double>() : cj.detonation_energy / p.rho0);
@@ -129,6 +149,20 @@ void read_gas(TableReader& root, Case& c) {
                                    "state)", r.path()));
     region.state = read_state(r, products ? *g.explosive : g.eos);
     region.state.products_fraction = products ? 1.0 : 0.0;
+    const cip::EquationOfState& eos = products ? *g.explosive : g.eos;
+    const double p = eos.pressure(region.state.density, region.state.internal_energy),
+                 a = eos.sound_speed(region.state.density, region.state.internal_energy);
+    if (!(p > 0) || !(a > 0) || !std::isfinite(p) || !std::isfinite(a))
+      throw InputError(fmt::format("{}: the state (density {:g} kg/m3, internal energy {:g} J/kg) has pressure {:g} Pa and "
+                                   "sound speed {:g} m/s under the {}'s equation of state; a gas state needs both positive "
+                                   "and finite", r.path(), region.state.density, region.state.internal_energy, p, a,
+                                   products ? "products" : "air"));
+    bool holds_cell = false;
+    for (int j = 0; j < g.grid.ny && !holds_cell; ++j)
+      for (int i = 0; i < g.grid.nx && !holds_cell; ++i) holds_cell = region.where.contains(g.grid.cell_x(i), g.grid.cell_y(j));
+    if (!holds_cell)
+      throw InputError(fmt::format("{}: the region holds no cell centre of the grid (it lies outside [domain], or is "
+                                   "smaller than a cell)", r.path()));
     r.finish();
     g.regions.push_back(region);
   }

@@ -41,6 +41,7 @@ void read_probe(TableReader& root, Case& c) {
       q.name = t.text("name", {});
       q.position = t.pair("position", "m");
       if (t.has("until")) q.until = t.number("until", "s", Range::positive());
+      t.allow({"until"});
       t.finish();
       check_output_name("probe.rock_point", q.name);
       rock.push_back(q.name);

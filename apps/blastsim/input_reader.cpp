@@ -4,6 +4,8 @@
 
 #include "blastsim/core/error.hpp"
 
+#include <cerrno>
+#include <cstdlib>
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -75,7 +77,7 @@ void TableReader::wrong_type(const std::string& key, const std::string& what, co
 }
 
 void TableReader::echo_value(const std::string& key, const std::string& value, bool given) {
-  echo(key, fmt::format("{} = {}{}", key_path(key), value, given ? "" : "   (default)"));
+  echo(key, fmt::format("{} = {}{}", key_path(key), value, given ? "" : kDefaultMark));
 }
 
 double TableReader::number(const std::string& key, const char* unit, Range range, std::optional<double> fallback) {
@@ -121,8 +123,9 @@ std::string TableReader::text(const std::string& key, const std::vector<std::str
                               std::optional<std::string> fallback) {
   std::string list;
   for (const std::string& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-  const toml::node* n = lookup(key, fallback.has_value(), "one of " + list);
-  if (n && !n->is_string()) wrong_type(key, "a string (one of " + list + ")", *n);
+  const std::string expected = allowed.empty() ? std::string("a string") : "one of " + list;
+  const toml::node* n = lookup(key, fallback.has_value(), expected);
+  if (n && !n->is_string()) wrong_type(key, allowed.empty() ? expected : "a string (" + expected + ")", *n);
   const std::string v = n ? *n->value<std::string>() : *fallback;
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), v) == allowed.end())
     throw InputError(fmt::format("{} = \"{}\": must be one of {}", key_path(key), v, list));
@@ -188,6 +191,11 @@ std::vector<TableReader> TableReader::table_array(const std::string& key) {
   return out;
 }
 
+void TableReader::allow(const std::vector<std::string>& keys) {
+  for (const std::string& k : keys)
+    if (std::find(known_.begin(), known_.end(), k) == known_.end()) known_.push_back(k);
+}
+
 void TableReader::finish() const {
   for (auto&& [k, v] : *table_) {
     const std::string key(k.str());
@@ -209,6 +217,12 @@ void apply_override(toml::table& root, const std::string& assignment) {
   try {
     parsed = toml::parse("v = " + text);
   } catch (const toml::parse_error&) {
+    char* end = nullptr;
+    errno = 0;
+    std::strtod(text.c_str(), &end);
+    if (!text.empty() && end && *end == '\0' && errno == ERANGE)  // a number, but not one a double holds
+      throw InputError(fmt::format("override '{}': {} is a number outside the range of a double (about 1e-308 to "
+                                   "1e308 in magnitude)", assignment, text));
     parsed = toml::table{{"v", text}};
   }
   std::vector<std::string> parts;

@@ -26,6 +26,9 @@ struct Range {
   std::string describe() const;
 };
 
+//! The mark that ends the echo line of a key left at its default.
+inline constexpr const char* kDefaultMark = "   (default)";
+
 //! One line of the resolved configuration: the full key and "key = value unit" (defaults marked).
 struct EchoLine {
   std::string key;
@@ -46,6 +49,9 @@ class TableReader {
                     std::optional<long long> fallback = {}, long long max_value = (1LL << 62));
   bool boolean(const std::string& key, std::optional<bool> fallback = {});
   std::string text(const std::string& key, const std::vector<std::string>& allowed, std::optional<std::string> fallback = {});
+  //! Marks keys as allowed in this table without reading them (keys read only in some cases), so that
+  //! finish()'s list of the allowed keys names them too.
+  void allow(const std::vector<std::string>& keys);
   std::array<double, 2> pair(const std::string& key, const char* unit, std::optional<std::array<double, 2>> fallback = {});
   std::vector<double> number_list(const std::string& key, const char* unit, Range range);
   bool has(const std::string& key) const;

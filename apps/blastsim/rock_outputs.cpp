@@ -19,7 +19,39 @@ fdem::RockModel make_rock_model(const Case& c) {
     const ProbeSettings::RockPoint& p = c.probes.rock_points[k];
     spec.probes.push_back({fmt::format("probe.rock_point.{}", k), p.position, p.until});
   }
-  return fdem::build_rock_model(spec);
+  fdem::RockModel model = fdem::build_rock_model(spec);
+  check_against_mesh(c, model.mesh.mesh);
+  return model;
+}
+
+void check_against_mesh(const Case& c, const fdem::TriangleMesh& mesh) {
+  std::array<double, 2> lo{1e308, 1e308}, hi{-1e308, -1e308};
+  for (const auto& v : mesh.vertices)
+    for (int d = 0; d < 2; ++d) lo[d] = std::min(lo[d], v[d]), hi[d] = std::max(hi[d], v[d]);
+  auto in_box = [&](const std::array<double, 2>& p) { return p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1]; };
+  const std::string box = fmt::format("[{:g}, {:g}] x [{:g}, {:g}] m", lo[0], hi[0], lo[1], hi[1]);
+  for (size_t k = 0; k < c.analysis.holes.size() && c.analysis.holes_given; ++k)
+    if (!in_box(c.analysis.holes[k].center))
+      throw InputError(fmt::format("analysis.hole.{}.center = [{:g}, {:g}] m: outside the rock (its mesh spans {})", k,
+                                   c.analysis.holes[k].center[0], c.analysis.holes[k].center[1], box));
+  const double extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  if (c.analysis.ring_width > extent)
+    throw InputError(fmt::format("analysis.damage_ring_width = {:g} m: wider than the rock ({:g} m across, {})",
+                                 c.analysis.ring_width, extent, box));
+  for (size_t k = 0; k < c.coupling.charges.size(); ++k) {  // a charge sits in a hole: no triangle holds its centre
+    const std::array<double, 2> q = c.coupling.charges[k].center;
+    for (const std::array<int, 3>& t : mesh.triangles) {
+      const auto& a = mesh.vertices[t[0]];
+      const auto& b = mesh.vertices[t[1]];
+      const auto& d = mesh.vertices[t[2]];
+      auto side = [&](const std::array<double, 2>& u, const std::array<double, 2>& v) {
+        return (v[0] - u[0]) * (q[1] - u[1]) - (v[1] - u[1]) * (q[0] - u[0]);
+      };
+      if (side(a, b) > 0 && side(b, d) > 0 && side(d, a) > 0)
+        throw InputError(fmt::format("charge.{}: no hole in the rock's mesh at its centre [{:g}, {:g}] m (a triangle of "
+                                     "the rock holds it); a charge fills a hole of the mesh", k, q[0], q[1]));
+    }
+  }
 }
 
 double rock_time_step(const Case& c, const fdem::RockSolver& solver) {
@@ -64,8 +96,10 @@ void RockOutputs::write_checkpoint(CheckpointWriter& w) {
 
 void RockOutputs::read_checkpoint(CheckpointReader& r) {
   index_ = r.value<int>("out.rock.index");
-  if (index_ < 0) r.fail("out.rock.index", "negative");
+  if (index_ < 0 || index_ > 999999) r.fail("out.rock.index", "out of range (0 to 999999 snapshots)");
   e0_ = r.value<fdem::RockEnergies>("out.rock.initial");
+  for (double v : {e0_.kinetic, e0_.strain, e0_.joint_work, e0_.joint_stored, e0_.external_work, e0_.pressure_work})
+    if (!std::isfinite(v)) r.fail("out.rock.initial", "holds an energy that is not finite");
   series_.read_checkpoint(r, "out.rock.csv_size");
   if (fragmentation_) fragmentation_->read_checkpoint(r, "out.rock.fragmentation_size");
   if (probes_) probes_->read_checkpoint(r, "out.rock.probes_size");
@@ -108,12 +142,16 @@ void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& l
     const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
     write_atomically((dir_ / "ppv.csv").string(), [&](std::ostream& out) {
       out << "name,x_m,y_m,distance_from_hole0_m,ppv_m_per_s,peak_time_s,peak_vx_m_per_s,peak_vy_m_per_s\n";
-      for (size_t k = 0; k < p.size(); ++k) {
+      for (size_t k = 0; k < p.size(); ++k) {  // without an analysis hole the distance is an empty field
         const auto& q = c_.probes.rock_points[k].position;
-        const double d = a.holes.empty() ? std::nan("")
-                                         : std::hypot(q[0] - a.holes[0].center[0], q[1] - a.holes[0].center[1]);
-        out << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", c_.probes.rock_points[k].name, q[0], q[1], d,
-                           p[k].peak_speed, p[k].peak_time, p[k].peak_vx, p[k].peak_vy);
+        const double d = a.holes.empty() ? 0.0 : std::hypot(q[0] - a.holes[0].center[0], q[1] - a.holes[0].center[1]);
+        out << c_.probes.rock_points[k].name << ","
+            << csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) {
+                 o.real("x_m", q[0]).real("y_m", q[1]).real_if(!a.holes.empty(), "distance_from_hole0_m", d);
+                 o.real("ppv_m_per_s", p[k].peak_speed).real("peak_time_s", p[k].peak_time);
+                 o.real("peak_vx_m_per_s", p[k].peak_vx).real("peak_vy_m_per_s", p[k].peak_vy);
+               })
+            << "\n";
       }
     });
   }
@@ -133,15 +171,20 @@ void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& l
                          g.centroid[1], g.velocity[0], g.velocity[1]);
   });
   const fdem::SizeDistribution& d = sizes_;
+  auto size_columns = [&](CsvRecord& o, size_t i) {  // a fit that cannot be made: empty fields
+    const fdem::SwebrecFit& sw = d.swebrec;
+    const fdem::RosinRammlerFit& rr = d.rosin_rammler;
+    const double x = o.header() ? 0.0 : d.size[i];
+    o.real("sieve_size_m", x).real("passing", o.header() ? 0.0 : d.passing[i]);
+    o.real_if(sw.valid, "swebrec_fit", sw.valid ? fdem::swebrec_passing(x, sw.x50, sw.xmax, sw.b) : 0.0);
+    o.real_if(rr.valid, "rosin_rammler_fit", rr.valid ? fdem::rosin_rammler_passing(x, rr.x50, rr.n) : 0.0);
+  };
   write_atomically((dir_ / "size_distribution.csv").string(), [&](std::ostream& out) {
-    out << "sieve_size_m,passing,swebrec_fit,rosin_rammler_fit\n";
-    for (size_t i = 0; i < d.size.size(); ++i) {
-      const double sw = d.swebrec.valid ? fdem::swebrec_passing(d.size[i], d.swebrec.x50, d.swebrec.xmax, d.swebrec.b) : std::nan("");
-      const double rr = d.rosin_rammler.valid ? fdem::rosin_rammler_passing(d.size[i], d.rosin_rammler.x50, d.rosin_rammler.n) : std::nan("");
-      out << fmt::format("{:.9e},{:.9e},{:.9e},{:.9e}\n", d.size[i], d.passing[i], sw, rr);
-    }
+    out << csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) { size_columns(o, 0); }) << "\n";
+    for (size_t i = 0; i < d.size.size(); ++i)
+      out << csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { size_columns(o, i); }) << "\n";
   });
-  fragmentation_->row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { fragmentation_columns(o); }));
+  fragmentation_->row_of([&](CsvRecord& o) { fragmentation_columns(o); });
 }
 
 void RockOutputs::fragmentation_columns(CsvRecord& o) const {
@@ -149,10 +192,12 @@ void RockOutputs::fragmentation_columns(CsvRecord& o) const {
   o.integer("step", solver_.steps()).real("time_s", solver_.time()).integer("fragments", d.fragments);
   o.integer("sized", d.sized).real("fines_mass_fraction", d.total_mass > 0 ? d.fines_mass / d.total_mass : 0.0, 6);
   o.real("largest_mass_fraction", largest_fraction_, 6).real("x20_m", d.x20, 6).real("x50_m", d.x50, 6);
-  o.real("x80_m", d.x80, 6).real("oversize_fraction", d.oversize_fraction, 6).real("swebrec_x50_m", d.swebrec.x50, 6);
-  o.real("swebrec_xmax_m", d.swebrec.xmax, 6).real("swebrec_b", d.swebrec.b, 6).real("swebrec_r2", d.swebrec.r_squared, 6);
-  o.real("rosin_rammler_x50_m", d.rosin_rammler.x50, 6).real("rosin_rammler_n", d.rosin_rammler.n, 6);
-  o.real("rosin_rammler_r2", d.rosin_rammler.r_squared, 6);
+  o.real("x80_m", d.x80, 6).real("oversize_fraction", d.oversize_fraction, 6);
+  const bool sw = d.swebrec.valid, rr = d.rosin_rammler.valid;  // a fit that cannot be made: empty fields
+  o.real_if(sw, "swebrec_x50_m", d.swebrec.x50, 6).real_if(sw, "swebrec_xmax_m", d.swebrec.xmax, 6);
+  o.real_if(sw, "swebrec_b", d.swebrec.b, 6).real_if(sw, "swebrec_r2", d.swebrec.r_squared, 6);
+  o.real_if(rr, "rosin_rammler_x50_m", d.rosin_rammler.x50, 6).real_if(rr, "rosin_rammler_n", d.rosin_rammler.n, 6);
+  o.real_if(rr, "rosin_rammler_r2", d.rosin_rammler.r_squared, 6);
   for (size_t k = 0; k < c_.analysis.holes.size(); ++k) {
     const fdem::DamageZone z = o.header() ? fdem::DamageZone{} : zones_[k];
     o.real(fmt::format("hole{}_crushed_radius_m", k), z.crushed_radius, 6);
@@ -229,8 +274,8 @@ fdem::RockEnergies RockOutputs::monitor() {
   const double balance = fdem::energy_residual(e, e0_);
   // the support reactions on the loaded nodes: the platen force, with the sign of the axes
   const std::vector<std::array<double, 2>> reactions = solver_.support_reactions(velocity_nodes_);
-  if (probes_) probes_->row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { probe_columns(o); }));
-  series_.row(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { series_columns(o, e, balance, reactions); }));
+  if (probes_) probes_->row_of([&](CsvRecord& o) { probe_columns(o); });
+  series_.row_of([&](CsvRecord& o) { series_columns(o, e, balance, reactions); });
   return e;
 }
 

@@ -19,8 +19,12 @@
 
 namespace blastsim::app {
 
-//! The rock model of a case (fdem::build_rock_model() with the case's rock probes).
+//! The rock model of a case (fdem::build_rock_model() with the case's rock probes), checked against the case
+//! (check_against_mesh()).
 fdem::RockModel make_rock_model(const Case& c);
+//! InputError when what the case places in the rock does not fit its mesh: an [[analysis.hole]] centre outside
+//! the mesh's bounding box, damage rings wider than the rock, a [[charge]] whose centre a triangle holds.
+void check_against_mesh(const Case& c, const fdem::TriangleMesh& mesh);
 
 //! dt [s] of the rock: the fixed time.dt (refused above the stable step, naming it; a coupled run whose rock
 //! subcycles divides the gas's step instead) or time.step_fraction x the stable step.

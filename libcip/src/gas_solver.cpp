@@ -406,7 +406,7 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   time_ = r.value<double>("gas.time");
   steps_ = r.value<long long>("gas.steps");
   if (!std::isfinite(time_) || time_ < 0) r.fail("gas.time", "not a finite time >= 0");
-  if (steps_ < 0) r.fail("gas.steps", "negative");
+  if (steps_ < 0 || steps_ > kMaxCheckpointSteps) r.fail("gas.steps", "negative or above 1e15");
   // The material fields exist exactly in a two-material run (an empty record matches a one-gas case only).
   const size_t material_size = materials_.two ? static_cast<size_t>(grid_.padded_shape().size()) : 0;
   if (a_->materials.alpha.size() != material_size || a_->materials.m1.size() != material_size)

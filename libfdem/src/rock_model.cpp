@@ -85,6 +85,9 @@ void check_mesh_holes(const MeshSpec& s, const std::vector<std::string>& labels)
                                   c.center[1] - c.radius >= s.min[1] + 0.5 * h && c.center[1] + c.radius <= s.max[1] - 0.5 * h
                             : std::hypot(c.center[0] - s.center[0], c.center[1] - s.center[1]) + c.radius <=
                                   s.radius - 0.5 * h;
+    if (!(c.radius >= 0.5 * h))  // Gmsh cannot mesh a circle much smaller than its elements
+      throw InputError(labels[k] + ".radius = " + num(c.radius) + " m: a hole needs a radius of at least half an element (" +
+                       s.label + ".element_size = " + num(h) + " m); use smaller elements or a larger hole");
     if (!inside)
       throw InputError(labels[k] + ": the hole (centre [" + num(c.center[0]) + ", " + num(c.center[1]) + "] m, radius " +
                        num(c.radius) + " m) is not inside the rock's " + mesh_shape_name(s.shape) +
@@ -126,6 +129,10 @@ void check_joint_lines(const MeshSpec& s) {
 }
 
 NamedMesh build_mesh(const MeshSpec& s) {
+  const bool one_hole = s.shape == MeshShape::disc_with_hole || s.shape == MeshShape::rectangle_with_hole;
+  if (one_hole && !(s.hole_radius >= 0.5 * s.element_size))
+    throw InputError(s.label + ".hole_radius = " + num(s.hole_radius) + " m: a hole needs a radius of at least half an "
+                     "element (" + s.label + ".element_size = " + num(s.element_size) + " m)");
   NamedMesh m = mesh_of_shape(s);
   if (s.jitter > 0) {
     try {

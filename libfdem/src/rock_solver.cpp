@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -286,9 +287,21 @@ void RockSolver::finish_motion(double v_max) {
     const std::vector<double> x0 = to_host(a_->node_params.x0), y0 = to_host(a_->node_params.y0);
     std::ostringstream where;
     if (bad < x0.size()) where << " (initially at " << x0[bad] << ", " << y0[bad] << " m)";
-    throw InstabilityError("rock velocity not finite at step " + std::to_string(steps_) + " (t = " +
-                           std::to_string(time_) + " s), node " + std::to_string(bad) + " of triangle " +
-                           std::to_string(bad / 3) + where.str());
+    const std::vector<double> x = to_host(a_->nodes.x), y = to_host(a_->nodes.y);
+    for (size_t t = 0; 3 * t + 2 < x.size(); ++t) {  // a triangle turned inside out has no stress (triangle_stress)
+      const size_t n = 3 * t;
+      const double area2 = (x[n + 1] - x[n]) * (y[n + 2] - y[n]) - (x[n + 2] - x[n]) * (y[n + 1] - y[n]);
+      if (!(area2 > 0)) {
+        where << "; the first triangle inverted or without a finite area is " << t << " (signed area " << 0.5 * area2
+              << " m2, initially at " << x0[n] << ", " << y0[n]
+              << " m): the step is too long for the loads on it, or the rock too soft";
+        break;
+      }
+    }
+    std::ostringstream when;
+    when << std::scientific << std::setprecision(6) << time_;
+    throw InstabilityError("rock velocity not finite at step " + std::to_string(steps_) + " (t = " + when.str() +
+                           " s), node " + std::to_string(bad) + " of triangle " + std::to_string(bad / 3) + where.str());
   }
   travel_since_build_ += v_max * advanced;
   last_speed_ = v_max;
@@ -655,7 +668,8 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   grid_x0_ = origin[0], grid_y0_ = origin[1];
   steps_ = r.value<long>("rock.steps");
   rebuilds_ = r.value<long>("rock.contact.rebuilds");
-  if (steps_ < 0 || rebuilds_ < 0) r.fail(steps_ < 0 ? "rock.steps" : "rock.contact.rebuilds", "negative");
+  if (steps_ < 0 || steps_ > kMaxCheckpointSteps) r.fail("rock.steps", "negative or above 1e15");
+  if (rebuilds_ < 0 || rebuilds_ > steps_ + 1) r.fail("rock.contact.rebuilds", "negative or more than the rock's steps");
   const std::array<int, 2> cells = r.value<std::array<int, 2>>("rock.contact.cells");
   const int min_cells = options_.contact ? 1 : 0;  // without contact no grid is ever built
   for (const int n : cells)

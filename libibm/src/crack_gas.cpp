@@ -6,6 +6,7 @@
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/error.hpp"
 
+#include <sstream>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -181,12 +182,28 @@ int CrackGas::advance(double dt) {
   if (!(dt > 0)) return 0;
   update_primitives();
   const double limit = stable_dt();
+  if (!(limit > options_.courant / (0.5 * kInvalidSegmentRate)))
+    throw InstabilityError("crack gas state not valid: " + describe_invalid_segment());
   const int steps = std::isfinite(limit) ? std::max(1, static_cast<int>(std::ceil(dt / limit * (1 - 1e-12)))) : 1;
   for (int k = 0; k < steps; ++k) {  // each substep starts from the primitives just computed
     step_from_primitives(dt / steps);
     update_primitives();
   }
   return steps;
+}
+
+std::string CrackGas::describe_invalid_segment() const {
+  const std::vector<std::uint8_t> kind = kinds();
+  const std::vector<ChannelConserved> c = gas();
+  const std::vector<double> volume = volumes(), w = apertures();
+  for (std::size_t s = 0; s < kind.size(); ++s) {
+    if (kind[s] != kSegmentGas || segment_state_valid(c[s], volume[s])) continue;
+    std::ostringstream os;
+    os << "segment (joint) " << s << ": mass " << c[s].m << " kg/m, momentum " << c[s].q << " kg/s, energy " << c[s].E
+       << " J/m, volume " << volume[s] << " m2/m, aperture " << w[s] << " m";
+    return os.str();
+  }
+  return "a mouth's reservoir (the grid cell a crack opens into) holds no valid gas";
 }
 
 CrackGasTotals CrackGas::totals(double reference_pressure) const {

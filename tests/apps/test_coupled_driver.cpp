@@ -41,7 +41,7 @@ std::vector<std::string> small_case(const fs::path& out) {
           "probe.rock_point.4.position=[0.0953, 0.055]", "probe.rock_point.5.position=[0.1126, 0.065]"};
 }
 
-//! Columns of the last row of a CSV file by header name.
+//! Columns of the last row of a CSV file by header name (an empty field: NaN).
 std::map<std::string, double> last_row(const fs::path& p) {
   std::ifstream in(p);
   std::string header, line, last;
@@ -51,7 +51,7 @@ std::map<std::string, double> last_row(const fs::path& p) {
   std::map<std::string, double> row;
   std::stringstream h(header), v(last);
   std::string name, value;
-  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
+  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = value.empty() ? std::nan("") : std::stod(value);
   return row;
 }
 }  // namespace

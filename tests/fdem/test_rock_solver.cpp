@@ -54,6 +54,27 @@ TEST_CASE("F7: a body at rest stays at rest: no force, no damage, constant energ
   CHECK(e.kinetic + e.strain < 1e-24 * rock.youngs_modulus * 0.016);
 }
 
+TEST_CASE("A triangle turned inside out stops the rock step, naming the triangle", "[fdem][instability]") {
+  const FdemTopology topo = build_topology(structured_rectangle(4, 2, 0.0, 0.04, 0.0, 0.02));
+  RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
+  const RockSnapshot snap = s.snapshot();
+  const double dt = s.stable_dt();
+  // Node 0 of triangle 0 moves in one step to its mirror image across the opposite edge (nodes 1, 2).
+  std::vector<double> v(2 * s.node_count(), 0.0);
+  for (int d = 0; d < 2; ++d) {
+    const double p0 = d ? snap.y[0] : snap.x[0], mid = 0.5 * ((d ? snap.y[1] : snap.x[1]) + (d ? snap.y[2] : snap.x[2]));
+    v[2 * 0 + d] = 2 * (mid - p0) / dt;
+  }
+  s.set_velocities(v);
+  try {
+    for (int k = 0; k < 5; ++k) s.step(dt);
+    FAIL("five steps with an inverted triangle ran without an error");
+  } catch (const blastsim::InstabilityError& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("inverted or without a finite area is 0") != std::string::npos);
+  }
+}
+
 TEST_CASE("F1: P-wave in a laterally confined bar: speed and stress behind the front", "[fdem][F1]") {
   const double L = 0.6, H = 0.03, v0 = 0.1;  // [m], [m/s]
   const int nx = 120, ny = 6;

@@ -4,6 +4,8 @@
 #include "blastsim/fdem/triangle_kernels.hpp"
 #include "catch.hpp"
 
+#include <cmath>
+
 using namespace blastsim::fdem;
 
 namespace {
@@ -40,6 +42,25 @@ TEST_CASE("A rigid rotation by 90 degrees leaves the triangle unstressed (object
   CHECK(std::fabs(T.a) < 1e-12 * scale);
   CHECK(std::fabs(T.b) < 1e-12 * scale);
   CHECK(std::fabs(T.d) < 1e-12 * scale);
+}
+
+TEST_CASE("An inverted or flattened triangle has no stress: NaN, which stops the rock step", "[fdem][triangle]") {
+  const RockMaterial rock = RockMaterial::paper_table2();
+  const Mat2 inv_F0 = edge_matrix(P0, P1, P2).inverse();
+  const Vec2 flipped{P2.x, -P2.y}, flat{0.5 * (P0.x + P1.x), 0.0};  // the apex through the base, and onto it
+  for (const Vec2& apex : {flipped, flat}) {
+    const Mat2 T = triangle_stress(inv_F0, edge_matrix(P0, P1, apex), Mat2{0, 0, 0, 0}, rock.lame_lambda(),
+                                   rock.shear_modulus(), 0.0);
+    CHECK(std::isnan(T.a));
+    CHECK(std::isnan(T.b));
+    CHECK(std::isnan(T.d));
+  }
+  // Just before the apex reaches the base (J = 1e-6) the stress is finite, and strongly compressive.
+  const Vec2 low{P2.x, 1e-6 * P2.y};
+  const Mat2 T = triangle_stress(inv_F0, edge_matrix(P0, P1, low), Mat2{0, 0, 0, 0}, rock.lame_lambda(),
+                                 rock.shear_modulus(), 0.0);
+  CHECK(std::isfinite(T.d));
+  CHECK(T.d < -1e3 * rock.youngs_modulus);
 }
 
 TEST_CASE("Nodal forces balance and equal the traction on the edges", "[fdem][triangle]") {

@@ -2,6 +2,7 @@
 //! \brief docs/validation.md C1-C3: the crack channel solver alone (CrackGas) on straight channels: Sod's shock
 //! tube against the exact Riemann solution, steady friction flow between two reservoirs against Fanno's
 //! analytic mass flux (unchoked and choked), and exact conservation in a closed branched network.
+#include "blastsim/core/error.hpp"
 #include "catch.hpp"
 #include "exact_riemann.hpp"
 
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 
 using namespace blastsim;
 using namespace blastsim::ibm;
@@ -142,6 +144,29 @@ double channel_mass_flux(double rho0, double p0, double pb, double f, int n) {
 }
 
 }  // namespace
+
+TEST_CASE("A crack segment whose gas is not finite stops the channel step, naming the segment", "[ibm][crack]") {
+  const cip::GasMaterials mat = ideal_gas(1.4);
+  const int n = 8;
+  const double w = 1e-3, V = w / n;
+  for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity(), -1e-3}) {
+    CrackGas c = straight_channel(n, 1.0, w, mat, CrackGasOptions{}, false);
+    std::vector<ChannelConserved> gas(n, at_rest(mat, 1.0, 1e5, V));
+    gas[5].m = bad;  // a mass that is NaN, infinite or negative
+    c.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), gas, std::vector<double>(n, V));
+    try {
+      c.advance(1e-6);
+      FAIL("advance() accepted a segment of mass " << bad);
+    } catch (const blastsim::InstabilityError& e) {
+      INFO(e.what());
+      CHECK(std::string(e.what()).find("segment (joint) 5") != std::string::npos);
+    }
+  }
+  CrackGas ok = straight_channel(n, 1.0, w, mat, CrackGasOptions{}, false);  // the same channel, all valid
+  ok.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), std::vector<ChannelConserved>(n, at_rest(mat, 1.0, 1e5, V)),
+             std::vector<double>(n, V));
+  CHECK(ok.advance(1e-6) >= 1);
+}
 
 TEST_CASE("C1 crack channel: Sod's shock tube along a straight channel against the exact solution", "[ibm][crack][C1]") {
   const double e100 = sod_l1(100, false, true), e200 = sod_l1(200, false, true), e400 = sod_l1(400, false, true);

@@ -3,6 +3,7 @@
 //! bytes, a CSV file's columns by header name.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -35,7 +36,7 @@ inline std::string file_bytes(const std::filesystem::path& p) {
   return s.str();
 }
 
-//! All rows of a CSV file with a header row, as columns keyed by header name.
+//! All rows of a CSV file with a header row, as columns keyed by header name (an empty field: NaN).
 inline std::map<std::string, std::vector<double>> csv_columns(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::string header, line;
@@ -47,7 +48,7 @@ inline std::map<std::string, std::vector<double>> csv_columns(const std::filesys
   while (std::getline(in, line)) {
     std::stringstream v(line);
     std::string value;
-    for (size_t k = 0; k < names.size() && std::getline(v, value, ','); ++k) cols[names[k]].push_back(std::stod(value));
+    for (size_t k = 0; k < names.size() && std::getline(v, value, ','); ++k) cols[names[k]].push_back(value.empty() ? std::nan("") : std::stod(value));
   }
   return cols;
 }

@@ -24,6 +24,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -105,6 +106,9 @@ class CheckpointWriter {
 //! records; host_array(), value() and text() (and read_array() for a device array) look records up by name and
 //! check their element size (and read_array() the count); finish() refuses records that nothing read. Every problem is an InputError
 //! naming the file and the record.
+//! The most steps a checkpointed run may have taken (a larger count is a damaged or forged record).
+inline constexpr long long kMaxCheckpointSteps = 1000000000000000LL;
+
 class CheckpointReader {
  public:
   explicit CheckpointReader(std::string path) : path_(std::move(path)) {
@@ -184,6 +188,9 @@ class CheckpointReader {
     in_.seekg(static_cast<std::streamoff>(r.offset));
     in_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(r.count * sizeof(T)));
     if (!in_) fail(name, "cannot be read");
+    if constexpr (std::is_same_v<T, double>)  // no state of a run is NaN (an infinity can be a sentinel)
+      for (double x : v)
+        if (x != x) fail(name, "holds NaN");
     used_.insert(name);
     return v;
   }
@@ -206,11 +213,19 @@ class CheckpointReader {
     const std::vector<char> c = host_array<char>(name);
     return std::string(c.begin(), c.end());
   }
-  //! Refuses the checkpoint when it holds records that nothing read (another version's, or added by hand).
-  void finish() const {
+  //! Refuses the checkpoint when it holds records that nothing read (another version's, or added by hand);
+  //! then, the checkpoint accepted, runs what on_accept() deferred, in order, unless `apply` is false (a
+  //! restart with nothing to continue changes no file).
+  void finish(bool apply = true) {
     for (const auto& [name, record] : index_)
       if (!used_.count(name)) fail(name, "is not a record this version reads");
+    if (apply)
+      for (const std::function<void()>& action : on_accept_) action();
+    on_accept_.clear();
   }
+  //! Defers a change to the files a restart continues (cutting a CSV back, rewriting a collection) until
+  //! finish() has accepted the whole checkpoint: a refused restart changes nothing.
+  void on_accept(std::function<void()> action) { on_accept_.push_back(std::move(action)); }
   //! InputError naming the file and the record.
   [[noreturn]] void fail(const std::string& name, const std::string& what) const {
     throw InputError("checkpoint " + path_ + ", record '" + name + "': " + what);
@@ -226,6 +241,7 @@ class CheckpointReader {
   std::ifstream in_;
   std::map<std::string, Record> index_;
   std::set<std::string> used_;
+  std::vector<std::function<void()>> on_accept_;
 };
 
 }  // namespace blastsim

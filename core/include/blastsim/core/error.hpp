@@ -26,4 +26,10 @@ class InstabilityError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+//! A value about to be written is not finite (CsvRecord): the run stops before writing it.
+class NonFiniteValue : public InstabilityError {
+ public:
+  using InstabilityError::InstabilityError;
+};
+
 }  // namespace blastsim

@@ -93,6 +93,8 @@ class PvdSeries {
     w.host_array(name + ".times", times);
     w.text(name + ".files", files);
   }
+  //! Every snapshot it names must exist beside the collection; the file is rewritten once the whole
+  //! checkpoint is accepted (CheckpointReader::on_accept()).
   void read_checkpoint(CheckpointReader& r, const std::string& name) {
     const std::vector<double> times = r.host_array<double>(name + ".times");
     const std::string files = r.text(name + ".files");
@@ -104,11 +106,17 @@ class PvdSeries {
       const std::string file = files.substr(at, end - at);
       if (file.empty() || file.size() > 255 || file.find_first_of("/\\\"<>&") != std::string::npos || !std::isfinite(t))
         r.fail(name + ".files", "holds a name that is not a snapshot file of the output folder");
+      const std::filesystem::path snapshot = std::filesystem::path(path_).parent_path() / file;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(snapshot, ec))
+        throw InputError("--restart: " + snapshot.string() + ", a snapshot that " + path_ + " lists, is missing; a "
+                         "restart continues the outputs of the run that wrote the checkpoint (start the run anew "
+                         "without --restart)");
       e.emplace_back(t, file);
       at = end + 1;
     }
     if (at != files.size()) r.fail(name + ".files", "more file names than snapshot times");
-    restore(e);
+    r.on_accept([this, e] { restore(e); });
   }
 
  private:
@@ -137,10 +145,18 @@ class CsvRecord {
   explicit CsvRecord(Mode mode) : header_(mode == Mode::header) {}
   //! True while collecting the header: the values are not read, so a caller may pass zeros.
   bool header() const { return header_; }
-  //! A real column, in scientific notation with `digits` after the point (printf's %.*e).
+  //! A real column, in scientific notation with `digits` after the point (printf's %.*e). NonFiniteValue,
+  //! naming the column, when the value is not finite: no file holds a NaN or an infinity.
   CsvRecord& real(const std::string& name, double value, int digits = 9) {
+    if (!header_ && !std::isfinite(value))
+      throw NonFiniteValue("column " + name + " = " + std::to_string(value) + " is not finite");
     char text[64];
     return add(name, [&] { return std::string(text, std::snprintf(text, sizeof text, "%.*e", digits, value)); });
+  }
+  //! real() when `valid`, else an empty field (a quantity that cannot be computed, such as a fit to too few
+  //! points; the file's documentation says when).
+  CsvRecord& real_if(bool valid, const std::string& name, double value, int digits = 9) {
+    return valid ? real(name, value, digits) : add(name, [] { return std::string(); });
   }
   //! An integer column.
   CsvRecord& integer(const std::string& name, long long value) {
@@ -175,7 +191,8 @@ class CsvSeries {
  public:
   //! Opens `path`: a new run truncates it and writes `header`; `resume` (a restart) keeps it, and refuses
   //! (InputError) a file that is missing or starts with another header.
-  CsvSeries(std::string path, const std::string& header, bool resume) : path_(std::move(path)) {
+  CsvSeries(std::string path, const std::string& header, bool resume)
+      : path_(std::move(path)), header_bytes_(header.size() + 1) {
     if (resume) {
       std::ifstream in(path_);
       std::string first;
@@ -190,6 +207,19 @@ class CsvSeries {
     if (!resume) row(header);
   }
   CsvSeries(CsvSeries&&) = default;
+  //! Appends the row whose columns `fill(CsvRecord&)` adds; InstabilityError naming the file and the column
+  //! when a value is not finite, before anything is written.
+  template <class Fill>
+  void row_of(Fill&& fill) {
+    std::string line;
+    try {
+      line = csv_text(CsvRecord::Mode::row, fill);
+    } catch (const NonFiniteValue& e) {
+      throw InstabilityError(path_ + ": " + e.what() + "; the run stops before writing it (the files written so far "
+                             "and the last checkpoint are kept)");
+    }
+    row(line);
+  }
   //! Appends one line (with its newline) and flushes.
   void row(const std::string& line) {
     out_ << line << '\n';
@@ -203,14 +233,17 @@ class CsvSeries {
   }
   //! The size in a checkpoint record `name`, and back: read_checkpoint() cuts the file to it (truncate_to()).
   void write_checkpoint(CheckpointWriter& w, const std::string& name) { w.value(name, size()); }
-  void read_checkpoint(CheckpointReader& r, const std::string& name) { truncate_to(r.value<std::uint64_t>(name)); }
+  //! The size is checked at once (it must hold at least the header line and at most the file's bytes); the
+  //! file is cut back once the whole checkpoint is accepted (CheckpointReader::on_accept()).
+  void read_checkpoint(CheckpointReader& r, const std::string& name) {
+    const std::uint64_t bytes = r.value<std::uint64_t>(name);
+    if (bytes < header_bytes_) r.fail(name, "smaller than the file's header line");
+    check_holds(bytes);
+    r.on_accept([this, bytes] { truncate_to(bytes); });
+  }
   //! Cuts the file back to `bytes` (a restart: the size its checkpoint recorded); InputError when it is shorter.
   void truncate_to(std::uint64_t bytes) {
-    const std::uint64_t now = size();
-    if (bytes > now)
-      throw InputError("--restart: " + path_ + " holds " + std::to_string(now) + " bytes, fewer than the " +
-                       std::to_string(bytes) + " the checkpoint recorded; its rows were removed since (start the run "
-                       "anew without --restart)");
+    check_holds(bytes);
     out_.close();
     std::filesystem::resize_file(path_, bytes);
     out_.open(path_, std::ios::app);
@@ -218,8 +251,16 @@ class CsvSeries {
   }
 
  private:
+  void check_holds(std::uint64_t bytes) {
+    const std::uint64_t now = size();
+    if (bytes > now)
+      throw InputError("--restart: " + path_ + " holds " + std::to_string(now) + " bytes, fewer than the " +
+                       std::to_string(bytes) + " the checkpoint recorded; its rows were removed since (start the run "
+                       "anew without --restart)");
+  }
   std::string path_;
   std::ofstream out_;
+  std::uint64_t header_bytes_ = 0;  // the header line with its newline
 };
 
 }  // namespace blastsim

@@ -35,11 +35,15 @@ BLAST_HD inline Mat2 edge_matrix(const Vec2& p0, const Vec2& p1, const Vec2& p2)
 //! F = FX F0^-1, B = F F^T, J = det F, T = mu (B - I)/J + lambda/2 (J - 1/J) I + eta D with
 //! D = sym(L), L = LX FX^-1. For small strain it reduces to Hooke's law 2 mu eps + lambda tr(eps) I.
 //! inv_F0: inverse of the initial edge matrix; FX, LX: current edge matrices of positions and velocities;
-//! eta [Pa s]: viscous damping coefficient.
+//! eta [Pa s]: viscous damping coefficient. NaN when J <= 0 (the triangle turned inside out).
 BLAST_HD inline Mat2 triangle_stress(const Mat2& inv_F0, const Mat2& FX, const Mat2& LX, double lambda, double mu,
                                      double eta) {
   const Mat2 F = FX * inv_F0;
   const double J = F.det();
+  if (!(J > 0.0)) {  // an inverted or flattened triangle has no stress: NaN, which stops the rock step on it
+    const double bad = nan("");
+    return {bad, bad, bad, bad};
+  }
   const Mat2 B = F * F.transposed();
   const Mat2 L = LX * FX.inverse();
   const double volumetric = 0.5 * lambda * (J - 1.0 / J);

@@ -79,8 +79,11 @@ class CrackGas {
   double stable_dt() const;
   //! One step of dt [s] (no check of dt): primitives, MUSCL-Hancock faces, junction fluxes, update.
   void step(double dt);
-  //! Advances by dt [s] in ceil(dt / stable_dt()) equal substeps; returns their number.
+  //! Advances by dt [s] in ceil(dt / stable_dt()) equal substeps; returns their number. InstabilityError
+  //! (describe_invalid_segment()) when a gas segment's state is not valid (segment_state_valid()).
   int advance(double dt);
+  //! The first gas segment whose state is not valid, with its mass, momentum, energy, volume and aperture.
+  std::string describe_invalid_segment() const;
   //! Recomputes the segments' primitive states (pressures for the faces' loads) from their gas.
   void update_primitives();
 

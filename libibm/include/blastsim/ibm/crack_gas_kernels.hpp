@@ -405,8 +405,19 @@ struct SegmentUpdateKernel {
   }
 };
 
+//! True when x is neither infinite nor NaN (x - x is NaN for both), without <cmath> in kernels.
+BLAST_HD inline bool finite_value(double x) { return x - x == 0.0; }
+
+//! A gas segment's state is valid when its mass is finite and >= 0, its momentum, energy and volume finite.
+BLAST_HD inline bool segment_state_valid(const ChannelConserved& c, double volume) {
+  return c.m >= 0.0 && finite_value(c.m) && finite_value(c.q) && finite_value(c.E) && finite_value(volume);
+}
+
+//! The rate SegmentRateOf gives a segment whose state is not valid: CrackGas::advance() stops the run on it.
+inline constexpr double kInvalidSegmentRate = 1e308;
+
 //! The largest signal speed over length of a gas segment [1/s]: (|u| + c max(1, 2 / Gamma)) / L (the vacuum
-//! front of a rarefaction runs at u + 2 c / Gamma).
+//! front of a rarefaction runs at u + 2 c / Gamma); kInvalidSegmentRate for a state that is not valid.
 struct SegmentRateOf {
   cip::GasMaterials mat;
   CrackGeometry<Access::read> geo;
@@ -414,6 +425,7 @@ struct SegmentRateOf {
   BLAST_HD double operator()(index_t si) const {
     const int s = static_cast<int>(si);
     if (seg.kind[s] != kSegmentGas) return 0.0;
+    if (!segment_state_valid(seg.cons[s], seg.volume[s])) return kInvalidSegmentRate;
     const ChannelPrimitive P = seg.prim[s];
     if (is_vacuum(P)) return 0.0;
     const double G = mat.mixture_gruneisen(P.alpha);
