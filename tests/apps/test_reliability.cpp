@@ -199,6 +199,9 @@ TEST_CASE("Reliability: forged checkpoint values (snapshot index, CSV size, step
   forge("out.blasthole.events", &nan, sizeof nan);
   forge("out.coupling.initial", &nan, sizeof nan);
   forge("gas.time", &nan, sizeof nan);
+  forge("ibm.transitions", &nan, sizeof nan);    // a ledger of structs of doubles
+  forge("gas.outflow_ledger", &nan, sizeof nan);
+  forge("rock.ledger.work", &nan, sizeof nan);
   write_bytes(ckpt, good);
   CHECK(run_driver(input, {"--restart", "time.end=1.5e-5"}, "rc_good").status == 0);
   std::printf("reliability: %d forged checkpoint values, each to be refused with exit 2 naming the record, the "

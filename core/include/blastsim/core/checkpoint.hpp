@@ -13,6 +13,7 @@
 //! all bytes before the trailer.
 #pragma once
 
+#include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/core/error.hpp"
 
 #include <zlib.h>
@@ -188,9 +189,12 @@ class CheckpointReader {
     in_.seekg(static_cast<std::streamoff>(r.offset));
     in_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(r.count * sizeof(T)));
     if (!in_) fail(name, "cannot be read");
-    if constexpr (std::is_same_v<T, double>)  // no state of a run is NaN (an infinity can be a sentinel)
-      for (double x : v)
+    if constexpr (CheckpointReals<T>::value) {  // no state of a run is NaN (an infinity can be a sentinel)
+      std::vector<double> reals(v.size() * sizeof(T) / sizeof(double));
+      std::memcpy(reals.data(), v.data(), reals.size() * sizeof(double));
+      for (double x : reals)
         if (x != x) fail(name, "holds NaN");
+    }
     used_.insert(name);
     return v;
   }

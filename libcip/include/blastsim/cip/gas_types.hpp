@@ -2,6 +2,7 @@
 //! \brief Plain option and result types of the gas solver (no backend headers: usable from any host code).
 #pragma once
 
+#include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/cip/boundary.hpp"
 #include "blastsim/cip/cip_kernels.hpp"
 
@@ -83,6 +84,9 @@ struct GasTotals {
   double products_mass = 0;    //!< [kg/m] of detonation products (two-material runs)
   double total_energy() const { return internal_energy + kinetic_energy; }
 };
+}  // namespace blastsim::cip
+BLASTSIM_CHECKPOINT_REALS(blastsim::cip::GasTotals)
+namespace blastsim::cip {
 
 //! A region of the grid selected by cell centre, for totals over part of the domain: a circle, an
 //! axis-aligned box, or everything [m].
@@ -119,6 +123,9 @@ struct OutflowLedger {
   double energy;         //!< [J/m]
   double products_mass;  //!< [kg/m]
 };
+}  // namespace blastsim::cip
+BLASTSIM_CHECKPOINT_REALS(blastsim::cip::OutflowLedger)
+namespace blastsim::cip {
 
 //! Cell-centred copy of the state on the host (i fastest), for output.
 struct HostGasFields {

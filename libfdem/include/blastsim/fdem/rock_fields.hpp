@@ -10,6 +10,7 @@
 //! joint j joins two edge slots. Plain header: no backend dependency.
 #pragma once
 
+#include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/core/access.hpp"
 #include "blastsim/fdem/joint_kernels.hpp"
 #include "blastsim/fdem/rock_types.hpp"
@@ -28,6 +29,9 @@ struct NodeWork {
   double gravity;
   double boundary;  //!< viscous-boundary dashpots (<= 0: the energy the waves carried out of the model)
 };
+}  // namespace blastsim::fdem
+BLASTSIM_CHECKPOINT_REALS(blastsim::fdem::NodeWork)
+namespace blastsim::fdem {
 
 //! Bits of NodeLoads::constraint: velocity prescribed along x, along y; node on a viscous boundary.
 inline constexpr std::uint8_t kPrescribedX = 1, kPrescribedY = 2, kViscousBoundary = 4;

@@ -5,6 +5,7 @@
 //! gas in the cracks, the hole's gas front in the crack network and its arrival at the outer surface.
 #pragma once
 
+#include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 #include "blastsim/ibm/crack_gas_coupling.hpp"
@@ -52,6 +53,9 @@ struct BlastholeEvents {
   double crack_arrival = -1;      //!< [s] the hole's gas at a crack mouth on the outer surface (crack gas)
   double crack_arrival_pressure = 0;  //!< [Pa] the crack mouth's pressure then
 };
+}  // namespace blastsim::ibm
+BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::BlastholeEvents)
+namespace blastsim::ibm {
 
 //! Samples the gas and the rock around a blasthole and keeps the events.
 class BlastholeMonitor {

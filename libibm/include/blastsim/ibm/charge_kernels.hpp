@@ -4,6 +4,7 @@
 //! Charges (charges.hpp) launches them. Plain header: no backend dependency.
 #pragma once
 
+#include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/cip/gas_state.hpp"
 #include "blastsim/core/access.hpp"
 #include "blastsim/core/field2d.hpp"
@@ -37,6 +38,9 @@ struct ChargeLedger {
   double replaced_mass;      //!< [kg/m] the gas it held before
   double replaced_energy;    //!< [J/m] that gas's internal energy
 };
+}  // namespace blastsim::ibm
+BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::ChargeLedger)
+namespace blastsim::ibm {
 #define BLASTSIM_CHARGE_LEDGER(X) X(ChargeLedger, burn, "per cell i + nx j")
 
 BLASTSIM_CONST_GROUP(ChargeCellParams, BLASTSIM_CHARGE_CELL_PARAMS)

@@ -11,6 +11,7 @@
 //! volume-fraction-weighted mass am = alpha m [kg/m] (two-material runs).
 #pragma once
 
+#include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/core/access.hpp"
 #include "blastsim/core/field2d.hpp"
@@ -38,6 +39,9 @@ struct ChannelConserved {
   double m1;  //!< products mass [kg/m]
   double am;  //!< alpha x mass [kg/m]
 };
+}  // namespace blastsim::ibm
+BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::ChannelConserved)
+namespace blastsim::ibm {
 
 //! Primitive state at a point of a channel; u along the frame's axis.
 struct ChannelPrimitive {

@@ -5,6 +5,7 @@
 //! Plain header: no backend dependency.
 #pragma once
 
+#include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/cip/gas_state.hpp"
 #include "blastsim/cip/grid.hpp"
 #include "blastsim/core/access.hpp"
@@ -40,6 +41,9 @@ struct TransitionLedger {
   double mass_created;    //!< [kg/m] ambient gas given to it, less gas removed with nowhere to go
   double energy_created;  //!< [J/m] likewise
 };
+}  // namespace blastsim::ibm
+BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::TransitionLedger)
+namespace blastsim::ibm {
 #define BLASTSIM_IBM_LEDGER(X) X(TransitionLedger, transitions, "per cell i + nx j, since the first update")
 
 BLASTSIM_FIELD_GROUP(FaceOwners, BLASTSIM_IBM_FACE_OWNERS)
