@@ -191,7 +191,7 @@ class CheckpointReader {
     if (!in_) fail(name, "cannot be read");
     if constexpr (CheckpointReals<T>::value) {  // no state of a run is NaN (an infinity can be a sentinel)
       std::vector<double> reals(v.size() * sizeof(T) / sizeof(double));
-      std::memcpy(reals.data(), v.data(), reals.size() * sizeof(double));
+      if (!reals.empty()) std::memcpy(reals.data(), v.data(), reals.size() * sizeof(double));
       for (double x : reals)
         if (x != x) fail(name, "holds NaN");
     }
