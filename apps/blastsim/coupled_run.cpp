@@ -156,9 +156,6 @@ class BlastholeFiles {
     next_ = r.value<double>("out.blasthole.next");
     if (!std::isfinite(next_)) r.fail("out.blasthole.next", "not finite");
     const ibm::BlastholeEvents ev = r.value<ibm::BlastholeEvents>("out.blasthole.events");
-    for (double v : {ev.first_crack, ev.ejection, ev.ejection_speed, ev.ejection_pressure, ev.jet_speed, ev.jet_time,
-                     ev.crack_arrival, ev.crack_arrival_pressure})
-      if (!std::isfinite(v)) r.fail("out.blasthole.events", "holds a time, speed or pressure that is not finite");
     if (!monitor_) return;
     monitor_->restore(ev);
     file_->read_checkpoint(r, "out.blasthole.csv_size");
@@ -354,9 +351,9 @@ class CoupledRunOutputs : public RunOutputs {
     w.value("run.warned", static_cast<int>(warned_));
     w.commit();
   }
-  //! Restores everything from a checkpoint; `continue_outputs`: then cut the CSVs back and rewrite the
-  //! collections to it (CheckpointReader::finish()).
-  void read_checkpoint(CheckpointReader& r, bool continue_outputs) {
+  //! Restores everything from a checkpoint; returns true when the run it holds has reached time.end, and
+  //! otherwise cuts the CSVs back and rewrites the collections to it (CheckpointReader::finish()).
+  bool read_checkpoint(CheckpointReader& r) {
     gas_.read_checkpoint(r);
     rock_.read_checkpoint(r);
     coupler_.read_checkpoint(r);
@@ -366,8 +363,11 @@ class CoupledRunOutputs : public RunOutputs {
     blasthole_.read_checkpoint(r);
     charges_.read_checkpoint(r);
     warned_ = r.value<int>("run.warned") != 0;
-    r.finish(continue_outputs);
-    log_ << fmt::format("restarted from {} at step {} (t = {:.6e} s)\n", checkpoint_path_, gas_.steps(), gas_.time());
+    const bool finished = gas_.time() >= c_.time.end * (1 - 1e-12);
+    r.finish(!finished);
+    if (!finished)
+      log_ << fmt::format("restarted from {} at step {} (t = {:.6e} s)\n", checkpoint_path_, gas_.steps(), gas_.time());
+    return finished;
   }
 
   double next_event(double t) const override { return gas_out_.next_event(t); }
@@ -471,10 +471,7 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
   }
   CoupledRunOutputs outputs(c, gas, rock, coupler, model, log, resume);
   if (resume) {
-    // A finished run's checkpoint (at or past time.end) is read and checked, then nothing is changed.
-    const bool finished = reader->value<double>("gas.time") >= c.time.end * (1 - 1e-12);
-    outputs.read_checkpoint(*reader, !finished);
-    if (finished) {
+    if (outputs.read_checkpoint(*reader)) {  // a finished run: read and checked, nothing changed
       log << fmt::format("--restart: the checkpoint is at t = {:.6e} s, at or past time.end = {:g} s: nothing to do; "
                          "the outputs in {} are left as they are\n", gas.time(), c.time.end, c.output.directory);
       return;

@@ -155,6 +155,7 @@ double CrackGas::stable_dt() const {
                     }
                     return best;
                   }));
+  if (rate >= kInvalidSegmentRate) return 0.0;  // a segment's state is not valid (SegmentRateOf)
   return rate > 0 ? options_.courant / rate : std::numeric_limits<double>::infinity();
 }
 
@@ -182,7 +183,7 @@ int CrackGas::advance(double dt) {
   if (!(dt > 0)) return 0;
   update_primitives();
   const double limit = stable_dt();
-  if (!(limit > options_.courant / (0.5 * kInvalidSegmentRate)))
+  if (!(limit > 0))
     throw InstabilityError("crack gas state not valid: " + describe_invalid_segment());
   const int steps = std::isfinite(limit) ? std::max(1, static_cast<int>(std::ceil(dt / limit * (1 - 1e-12)))) : 1;
   for (int k = 0; k < steps; ++k) {  // each substep starts from the primitives just computed

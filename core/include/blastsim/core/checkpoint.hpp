@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -189,11 +190,12 @@ class CheckpointReader {
     in_.seekg(static_cast<std::streamoff>(r.offset));
     in_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(r.count * sizeof(T)));
     if (!in_) fail(name, "cannot be read");
-    if constexpr (CheckpointReals<T>::value) {  // no state of a run is NaN (an infinity can be a sentinel)
+    if constexpr (CheckpointReals<T>::value) {  // no state of a run is NaN (CheckpointReals: when infinite)
       std::vector<double> reals(v.size() * sizeof(T) / sizeof(double));
       if (!reals.empty()) std::memcpy(reals.data(), v.data(), reals.size() * sizeof(double));
       for (double x : reals)
-        if (x != x) fail(name, "holds NaN");
+        if (x != x || (CheckpointReals<T>::finite && !std::isfinite(x)))
+          fail(name, CheckpointReals<T>::finite ? "holds a value that is not finite" : "holds NaN");
     }
     used_.insert(name);
     return v;

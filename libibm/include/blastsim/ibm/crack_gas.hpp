@@ -75,7 +75,7 @@ class CrackGas {
 
   // --- stepping ---
   //! Largest channel step [s]: courant / max over gas segments (and mouths) of the signal speed over length
-  //! (a device reduction); infinity when no segment holds gas.
+  //! (a device reduction); infinity when no segment holds gas, 0 when a gas segment's state is not valid.
   double stable_dt() const;
   //! One step of dt [s] (no check of dt): primitives, MUSCL-Hancock faces, junction fluxes, update.
   void step(double dt);
