@@ -16,7 +16,7 @@ Writes into OUTPUT_DIR:
 With crack gas ([crack_gas] enabled = true), also:
   fig3_crack_gas_NNNNNN.png the grid gas's pressure with the cracks coloured by their own gas's pressure
   crack_gas.png             gas mass in the cracks, their largest pressure and the hole-centre pressure, and
-                            how far the hole's gas has gone through the cracks (crack_gas_front_radius_m)
+                            how far the blast gas has gone, in the grid and the cracks (blast_gas_front_radius_m)
 Needs Debian's python3-matplotlib and python3-vtk9 (/usr/bin/python3).
 """
 import os
@@ -141,7 +141,7 @@ def series_plots(out):
     if cs is None:
         return
     if "crack_gas_mass_kg_per_m" in cs and np.any(cs["crack_gas_mass_kg_per_m"] > 0):
-        front = wall is not None and "crack_gas_front_radius_m" in wall
+        front = wall is not None and "blast_gas_front_radius_m" in wall
         fig, ax = plt.subplots(3 if front else 2, 1, figsize=(6.4, 8.8 if front else 6.4), sharex=True,
                                constrained_layout=True)
         t = cs["time_s"] * 1e3
@@ -153,8 +153,9 @@ def series_plots(out):
         ax[1].set_ylabel("[MPa]")
         ax[1].set_yscale("log")  # a crack pressed shut on its gas can spike by orders of magnitude
         ax[1].legend()
-        if front:  # how far the hole's gas has gone through the cracks (wall_series.csv)
-            ax[2].plot(wall["time_s"] * 1e3, wall["crack_gas_front_radius_m"], label="crack gas front (above 1/4 of the hole-wall pressure)")
+        if front:  # how far the blast gas has gone, through the grid and the cracks (wall_series.csv)
+            ax[2].plot(wall["time_s"] * 1e3, wall["blast_gas_front_radius_m"], label="blast gas front (grid and cracks)")
+            ax[2].plot(wall["time_s"] * 1e3, wall["blast_gas_front_crack_radius_m"], ls=":", label="in the cracks' own gas")
             outer = outer_radius(out)
             if outer is not None:
                 ax[2].axhline(outer, color="grey", lw=0.8, ls="--", label="the rock's outer surface")

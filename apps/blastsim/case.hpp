@@ -37,10 +37,12 @@ struct GasSettings {
   cip::GasSolverOptions solver;
   double courant = 0.1;  //!< [-] dt = courant / max signal rate, or the limit a fixed dt must respect
   cip::GasPoint ambient{};
-  //! [[gas.region]]: initial states (later regions overwrite earlier ones); products_fraction 1 for products
+  //! [[gas.region]]: initial states (later regions overwrite earlier ones); products_fraction 1 for products;
+  //! tracer 1 for the blast gas of a one-gas run (blast_gas, default true)
   struct Region {
     cip::CellRegion where;
     cip::GasPoint state;
+    bool blast_gas_given = false;  //!< the input set blast_gas (refused in a run with detonation products)
   };
   std::vector<Region> regions;
 

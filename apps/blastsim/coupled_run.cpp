@@ -79,6 +79,7 @@ class CouplingSeries {
     o.real("crack_gas_mass_kg_per_m", d.crack.mass).real("crack_gas_energy_J_per_m", d.crack.energy);
     o.integer("crack_gas_segments", d.crack.gas_segments).integer("crack_wet_segments", d.crack.wet_segments);
     o.real("crack_gas_pressure_max_Pa", d.crack.max_pressure, 6);
+    o.real("crack_gas_to_grid_J_per_m", d.crack.to_grid_energy).real("crack_gas_wall_work_J_per_m", d.crack.wall_work);
     o.real("charge_detonation_energy_J_per_m", d.charges.detonation_energy);
     for (const MonitorSettings::Region& r : c_.monitor.regions) {
       const cip::GasTotals t = o.header() ? cip::GasTotals{} : coupler_.gas_in(r.where);
@@ -106,6 +107,8 @@ class BlastholeFiles {
     advance_schedule(next_, c_.monitor.blasthole->interval, gas_.time() + 1e-12 * c_.time.end);
     const ibm::BlastholeSample s = monitor_->sample(gas_, rock_, coupler_.crack_gas());
     file_->row_of([&](CsvRecord& o) { wall_columns(o, s); });
+    last_front_ = s.blast_front;
+    if (s.blast_front > max_front_) max_front_ = s.blast_front, max_front_time_ = s.time;
   }
 
   //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
@@ -136,11 +139,28 @@ class BlastholeFiles {
              "  from the first outflow to the end of the run\n";
       out << fmt::format("gas speed at the onset: {}\n  the largest outward speed among those points at the first "
                          "outflow sample\n", ev.ejection < 0 ? std::string("-") : fmt::format("{:.1f} m/s", ev.ejection_speed));
-      if (coupler_.crack_gas())
-        out << fmt::format("the hole's gas reaches the outer free face through the cracks: {}\n  the first sample "
-                           "where the gas in a crack, at a crack mouth on the rock's outer surface, exceeds a\n  quarter of "
-                           "the gas pressure at the hole wall (and twice the ambient); pressure there then {:.4g} Pa\n",
-                           when(ev.crack_arrival), ev.crack_arrival_pressure);
+      if (gas_.materials().traced()) {
+        out << fmt::format("blast gas reaches the rock's outer surface: {}{} (paper: gas ejected at about 3.14 ms)\n",
+                           when(ev.blast_arrival), ev.blast_arrival < 0 ? "" : (ev.blast_arrival_crack > 0 ? ", at a crack "
+                                                                                "mouth" : ", on the circle outside"));
+        out << fmt::format("  the first sample where at least {:g} of the gas is blast gas (the traced gas: {}) at a pressure\n"
+                           "  of at least {:g} x the ambient, on the circle half a cell outside the outer radius or in a\n"
+                           "  crack at its mouth on the outer surface\n", ibm::BlastholeMonitor::kBlastFraction,
+                           gas_.materials().two ? "the detonation products" : "the gas of the [[gas.region]] tables",
+                           ibm::BlastholeMonitor::kBlastPressure);
+        out << fmt::format("blast gas outflow speed: {} (paper: about 214 m/s)\n",
+                           ev.blast_arrival < 0 || ev.blast_speed_time < 0
+                               ? std::string("-")
+                               : fmt::format("{:.1f} m/s at {:.3f} ms", ev.blast_speed, 1e3 * ev.blast_speed_time));
+        out << "  the blast gas's mass-flux-weighted mean outward speed (sum rho Y u_n^2 / sum rho Y u_n, Y its mass\n"
+               "  fraction) over the points of that circle where it is blast gas flowing out; its largest value over\n"
+               "  the samples from the arrival to the end of the run\n";
+        out << fmt::format("blast gas front at the end: {:.4f} m from the hole centre (farthest {:.4f} m at {:.3f} ms)\n"
+                           "  the farthest cell centre or crack midpoint inside the outer radius holding blast gas as above\n",
+                           last_front_, max_front_, 1e3 * max_front_time_);
+      } else {
+        out << "blast gas: not traced (no [[gas.region]] with blast_gas = true, no detonation products)\n";
+      }
       out << fmt::format("broken joints: {}; crack length {:.4f} m; fracture energy {:.4e} J/m\n", e.broken_joints,
                          e.crack_length, e.fracture_dissipated);
       out << analysis;
@@ -150,12 +170,17 @@ class BlastholeFiles {
   void write_checkpoint(CheckpointWriter& w) {
     w.value("out.blasthole.next", next_);
     w.value("out.blasthole.events", monitor_ ? monitor_->events() : ibm::BlastholeEvents{});
+    w.value("out.blasthole.front", std::array<double, 3>{last_front_, max_front_, max_front_time_});
     if (file_) file_->write_checkpoint(w, "out.blasthole.csv_size");
   }
   void read_checkpoint(CheckpointReader& r) {
     next_ = r.value<double>("out.blasthole.next");
     if (!std::isfinite(next_)) r.fail("out.blasthole.next", "not finite");
     const ibm::BlastholeEvents ev = r.value<ibm::BlastholeEvents>("out.blasthole.events");
+    const std::array<double, 3> front = r.value<std::array<double, 3>>("out.blasthole.front");
+    for (const double v : front)
+      if (!std::isfinite(v)) r.fail("out.blasthole.front", "not finite");
+    last_front_ = front[0], max_front_ = front[1], max_front_time_ = front[2];
     if (!monitor_) return;
     monitor_->restore(ev);
     file_->read_checkpoint(r, "out.blasthole.csv_size");
@@ -169,6 +194,7 @@ class BlastholeFiles {
   std::optional<ibm::BlastholeMonitor> monitor_;  // only with [monitor.blasthole]
   std::optional<CsvSeries> file_;
   double next_ = 0;  // time of the next sample [s]
+  double last_front_ = 0, max_front_ = 0, max_front_time_ = 0;  // the blast gas's front [m], its farthest and when
 
   static void wall_columns(CsvRecord& o, const ibm::BlastholeSample& s) {
     o.real("time_s", s.time).real("gas_pressure_wall_mean_Pa", s.wall_pressure_mean, 6);
@@ -179,8 +205,9 @@ class BlastholeFiles {
     o.real("crack_length_m", s.crack_length, 6).real("outer_surface_gas_pressure_max_Pa", s.outer_pressure_max, 6);
     o.real("outer_surface_gas_speed_max_m_per_s", s.outer_speed_max, 6);
     o.real("outer_surface_gas_speed_flux_mean_m_per_s", s.outer_flux_speed, 6);
-    o.real("outer_surface_crack_gas_pressure_max_Pa", s.outer_crack_pressure, 6);
-    o.real("crack_gas_front_radius_m", s.crack_gas_front, 6);
+    o.real("blast_gas_front_radius_m", s.blast_front, 6).real("blast_gas_front_crack_radius_m", s.blast_front_crack, 6);
+    o.real("outer_surface_blast_gas_fraction_max", s.outer_blast_fraction, 6);
+    o.real("outer_surface_blast_gas_speed_m_per_s", s.outer_blast_speed, 6);
   }
 };
 
@@ -424,6 +451,18 @@ class CoupledRunOutputs : public RunOutputs {
   bool warned_ = false;  // the budget warning was printed
 };
 
+//! The log's line on the crack gas: its parameters as they act (the friction law, the hand-over width).
+std::string crack_gas_line(const ibm::CrackGasOptions& o, const ibm::CrackGasCoupling& crack, const cip::GasGrid& grid) {
+  const ibm::ChannelFlowParams f = o.flow();
+  const ibm::HandoverGaps gaps = crack.handover_gaps(grid);
+  const std::string friction =
+      o.friction_factor ? fmt::format("friction factor {:.3g}", *o.friction_factor)
+                        : fmt::format("Louis's friction of the roughness {:.3g} m (f = {:.3g} at an aperture of 10 x it)",
+                                      f.roughness, ibm::louis_friction(0.05).turbulent);
+  return fmt::format("crack gas on (residual aperture {:.3g} m, {}, hand-over to the grid at {:.3g} m wide, {} junctions)",
+                     o.residual_aperture, friction, gaps.handover, crack.crack_gas().junction_count());
+}
+
 }  // namespace
 
 void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& options) {
@@ -443,7 +482,12 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
   coupling.rock_subcycling = c.time.rock_subcycling;
   coupling.fixed_dt = c.time.dt;
   ibm::GasRockCoupler coupler(gas, rock, g.ambient, coupling);
-  if (k.crack_gas) coupler.enable_crack_gas(k.crack_gas_options);
+  if (k.crack_gas) {
+    ibm::CrackGasCoupling& crack = coupler.enable_crack_gas(k.crack_gas_options);
+    for (std::size_t n = 0; n < model.crack_joints.size(); ++n)
+      if (c.rock.model.cracks[n].initial_aperture > 0)
+        crack.set_initial_apertures(model.crack_joints[n], c.rock.model.cracks[n].initial_aperture);
+  }
   if (!k.charges.empty()) {
     coupler.set_charges(k.charges, k.charge_products);
     const ibm::ChargeProducts& q = k.charge_products;
@@ -458,10 +502,14 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
                      "stable step {:.4g} s; gas load on the rock: {}; {}\n",
                      g.grid.nx, g.grid.ny, g.grid.dx, g.grid.dy, coupler.inactive_cells(), rock.triangle_count(),
                      rock.joint_count(), rock.stable_dt(), ibm::gas_load_name(k.gas_load),
-                     k.crack_gas ? fmt::format("crack gas on (residual aperture {:.3g} m, friction factor {:.3g}, {} junctions)",
-                                               k.crack_gas_options.residual_aperture, k.crack_gas_options.friction_factor,
-                                               coupler.crack_gas()->crack_gas().junction_count())
+                     k.crack_gas ? crack_gas_line(k.crack_gas_options, *coupler.crack_gas(), g.grid)
                                  : std::string("crack gas off"));
+  if (!c.rock.model.cracks.empty()) {
+    std::size_t joints = 0;
+    for (const std::vector<int>& j : model.crack_joints) joints += j.size();
+    log << fmt::format("pre-cut cracks: {} ({} joints broken at the start)\n", model.crack_joints.size(), joints);
+  }
+  if (g.materials().tracer) log << "blast gas traced: the gas of the [[gas.region]] tables with blast_gas = true\n";
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
   const std::string checkpoint_path = (std::filesystem::path(c.output.directory) / "checkpoint.bin").string();
   std::optional<CheckpointReader> reader;

@@ -22,6 +22,14 @@ Case read_case(const toml::table& input) {
   if (c.kind != CaseKind::rock) read_domain(root, c), read_gas(root, c), read_probe(root, c);
   if (c.kind != CaseKind::gas) read_rock(root, c), read_analysis(root, c);
   if (c.kind == CaseKind::coupled) read_charges(root, c);  // checks the mesh's holes with the charges'
+  if (c.kind != CaseKind::rock && c.gas.materials().two) {  // the products are the blast gas (the traced gas)
+    for (std::size_t k = 0; k < c.gas.regions.size(); ++k) {
+      if (c.gas.regions[k].blast_gas_given)
+        throw InputError(fmt::format("gas.region.{}.blast_gas: in a run with detonation products the products are the "
+                                     "blast gas; remove the key", k));
+      c.gas.regions[k].state.tracer = 0.0;
+    }
+  }
   if (c.kind == CaseKind::rock) {
     std::vector<std::string> labels;
     for (std::size_t k = 0; k < c.rock.model.mesh.holes.size(); ++k) labels.push_back(fmt::format("rock.mesh.hole.{}", k));

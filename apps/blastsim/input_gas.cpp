@@ -22,6 +22,7 @@ cip::GasMaterials GasSettings::materials() const {
   m.products = explosive.value_or(eos);
   for (const Region& r : regions) m.two = m.two || r.state.products_fraction > 0.0;
   m.two = m.two || charges;
+  for (const Region& r : regions) m.tracer = m.tracer || (!m.two && r.state.tracer > 0.0);
   return m;
 }
 
@@ -149,6 +150,10 @@ void read_gas(TableReader& root, Case& c) {
                                    "state)", r.path()));
     region.state = read_state(r, products ? *g.explosive : g.eos);
     region.state.products_fraction = products ? 1.0 : 0.0;
+    // The blast gas a one-gas run traces (docs/analysis.md "Blast gas"); with products, the products are.
+    region.blast_gas_given = r.has("blast_gas");
+    // Traced by default where the transport can carry a tracer (the conservative one).
+    region.state.tracer = r.boolean("blast_gas", g.solver.transport == cip::Transport::conservative) ? 1.0 : 0.0;
     const cip::EquationOfState& eos = products ? *g.explosive : g.eos;
     const double p = eos.pressure(region.state.density, region.state.internal_energy),
                  a = eos.sound_speed(region.state.density, region.state.internal_energy);
@@ -169,6 +174,9 @@ void read_gas(TableReader& root, Case& c) {
   if (g.materials().two && g.solver.transport != cip::Transport::conservative)
     throw InputError("gas.transport = \"paper\": the paper's transport carries one gas; a [[gas.region]] of detonation "
                      "products needs \"conservative\"");
+  if (g.materials().tracer && g.solver.transport != cip::Transport::conservative)
+    throw InputError("gas.transport = \"paper\": the paper's transport carries no tracer of the blast gas; remove "
+                     "blast_gas = true from the [[gas.region]] tables, or use \"conservative\"");
   gas.finish();
 }
 

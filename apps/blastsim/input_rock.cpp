@@ -119,6 +119,13 @@ void read_rock(TableReader& root, Case& c) {
     m.viscous_boundaries.push_back({v.path(), v.text("boundary", {})});
     v.finish();
   }
+  for (TableReader& k : rock.table_array("crack")) {
+    fdem::PreCutCrack cut{k.path(), {k.pair("from", "m"), k.pair("to", "m")},
+                          k.number("initial_aperture", "m", Range::non_negative(), 0.0)};
+    if (m.mesh.shape != fdem::MeshShape::file) fdem::check_mesh_segment(m.mesh, cut.segment, cut.label);
+    k.finish();
+    m.cracks.push_back(cut);
+  }
   rock.finish();
   m.material.validate();
   m.options.validate();

@@ -125,7 +125,10 @@ void RockOutputs::snapshot() {
   std::vector<fdem::JointField> gas;
   if (crack_) {
     ibm::CrackSegmentFields f = crack_->segment_fields();
-    gas = {{"aperture", std::move(f.aperture)}, {"gas_pressure", std::move(f.gas_pressure)}, {"gas_mass", std::move(f.gas_mass)}};
+    gas = {{"aperture", std::move(f.aperture)},
+           {"gas_pressure", std::move(f.gas_pressure)},
+           {"gas_mass", std::move(f.gas_mass)},
+           {"blast_gas_fraction", std::move(f.blast_gas_fraction)}};
   }
   fdem::write_joints_vtu((dir_ / joints_name).string(), s, gas);
   rock_pvd_.add(solver_.time(), rock_name);

@@ -35,9 +35,9 @@ void GasSolver::transport_conservatively(double dt) {
       cell_part("cip.transport.flux_y", IndexBox{0, g.nx, 0, g.ny + 1},
                 MassFluxKernel{1, s, active, Fy, Ey, dt, g.dy, g.dx, lim, mat, m, My, Ay, Wy}));
   for_each_cell("cip.transport.cells", 0, g.nx, 0, g.ny,
-                CellFluxUpdateKernel{s, v.now, active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy, mat.two, m, Mx, My, Ax,
+                CellFluxUpdateKernel{s, v.now, active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy, mat.two, mat.traced(), m, Mx, My, Ax,
                                      Ay, Wx, Wy});
-  if (mat.two) fill_material_ghosts(m, g, options_.boundaries);
+  if (mat.traced()) fill_material_ghosts(m, g, options_.boundaries);
   // Interior faces, and wall faces (held at rest, their incoming kinetic energy turned into heat). Outflow
   // faces are set by the ghost fill (characteristic condition); what they carry leaves the domain.
   fill_device("cip.transport.clear_u", a_->work.dissipation_u, 0.0);

@@ -33,7 +33,7 @@ void GasSolver::accumulate_boundary_outflow(double dt) {
       "cip.boundary_outflow", 2 * static_cast<index_t>(grid_.nx + grid_.ny),
       OutflowLedgerKernel{BoundaryFlowKernel{a_->starred.read(sh), w.pressure, w.mass_flux_x, w.mass_flux_y,
                                              w.energy_flux_x, w.energy_flux_y, mw.products_flux_x, mw.products_flux_y,
-                                             options_.transport == Transport::conservative, materials_.two, grid_,
+                                             options_.transport == Transport::conservative, materials_.traced(), grid_,
                                              options_.boundaries},
                           a_->outflow_ledger.view(), dt});
 }
@@ -68,6 +68,11 @@ GasSolver::GasSolver(const GasGrid& grid, const EquationOfState& eos, const GasS
 
 GasSolver::GasSolver(const GasGrid& grid, const GasMaterials& materials, const GasSolverOptions& options)
     : grid_(grid), materials_(materials), options_(options), a_(std::make_unique<detail::GasArrays>()) {
+  if (materials.tracer && materials.two)
+    throw InputError("a tracer needs a one-gas run: with detonation products the products are the traced gas");
+  if (materials.tracer && options.transport != Transport::conservative)
+    throw InputError("a tracer of the blast gas needs gas.transport = \"conservative\" (the paper's transport carries no "
+                     "passive scalar)");
   if (materials.two && options.transport != Transport::conservative)
     throw InputError("detonation products beside air need gas.transport = \"conservative\" (the paper's transport "
                      "carries one gas)");
@@ -75,7 +80,7 @@ GasSolver::GasSolver(const GasGrid& grid, const GasMaterials& materials, const G
   if (!(grid.dx > 0) || !(grid.dy > 0)) throw InputError("gas grid spacing must be positive");
   if (options.boundaries.unpaired_periodic_axis() >= 0)
     throw InputError("a periodic boundary must be set on both opposite sides");
-  a_->resize(grid.padded_shape().size(), 2 * static_cast<index_t>(grid.nx + grid.ny), materials.two);
+  a_->resize(grid.padded_shape().size(), 2 * static_cast<index_t>(grid.nx + grid.ny), materials.traced());
 }
 
 GasSolver::~GasSolver() = default;
@@ -86,8 +91,14 @@ GasStateView GasSolver::state() { return a_->state.view(grid_.padded_shape()); }
 GasStateReadView GasSolver::state() const { return a_->state.read(grid_.padded_shape()); }
 MaterialView GasSolver::material_fields() { return a_->materials.view(grid_.padded_shape()); }
 MaterialReadView GasSolver::material_fields() const { return a_->materials.read(grid_.padded_shape()); }
-GasCells GasSolver::cells() { return {state(), material_fields(), materials_.two}; }
-GasCellsRead GasSolver::cells() const { return {state(), material_fields(), materials_.two}; }
+GasCells GasSolver::cells() {
+  return {state(), material_fields(), materials_.two, materials_.traced(),
+          a_->ledgers.view(grid_.padded_shape()).positivity_heat};
+}
+GasCellsRead GasSolver::cells() const {
+  return {state(), material_fields(), materials_.two, materials_.traced(),
+          a_->ledgers.read(grid_.padded_shape()).positivity_heat};
+}
 ImmersedBoundaryView GasSolver::immersed_boundary() { return a_->immersed.view(grid_.padded_shape()); }
 ImmersedBoundaryReadView GasSolver::immersed_boundary() const { return a_->immersed.read(grid_.padded_shape()); }
 Field2D<double> GasSolver::pressure_with_viscosity() { return a_->work.view(grid_.padded_shape()).pressure; }
@@ -95,7 +106,7 @@ Field2D<double> GasSolver::pressure_with_viscosity() { return a_->work.view(grid
 void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_at) {
   const PaddedShape sh = grid_.padded_shape();
   std::vector<double> rho(sh.size(), 0.0), e(sh.size(), 0.0), u(sh.size(), 0.0), v(sh.size(), 0.0);
-  std::vector<double> alpha(materials_.two ? sh.size() : 0, 0.0), m1(alpha.size(), 0.0);
+  std::vector<double> alpha(materials_.traced() ? sh.size() : 0, 0.0), m1(alpha.size(), 0.0);
   for (int j = 0; j <= grid_.ny; ++j) {
     for (int i = 0; i <= grid_.nx; ++i) {
       if (i < grid_.nx && j < grid_.ny) {
@@ -106,10 +117,16 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
           throw InputError("products volume fraction " + std::to_string(c.products_fraction) + " outside [0, 1]");
         if (c.products_fraction > 0.0 && !materials_.two)
           throw InputError("detonation products in the initial state of a one-material gas (no explosive given)");
+        if (!(c.tracer >= 0.0 && c.tracer <= 1.0))
+          throw InputError("traced gas mass fraction " + std::to_string(c.tracer) + " outside [0, 1]");
+        if (c.tracer > 0.0 && !materials_.tracer)
+          throw InputError("a traced gas in the initial state of a run without a tracer");
         if (materials_.two) {
           // Both phases at the cell's density: the cell is all products, all air, or (rarely) a blend.
           alpha[sh.offset(i, j)] = c.products_fraction;
           m1[sh.offset(i, j)] = c.products_fraction * c.density;
+        } else if (materials_.tracer) {
+          m1[sh.offset(i, j)] = c.tracer * c.density;
         }
       }
       if (j < grid_.ny) u[sh.offset(i, j)] = state_at(grid_.face_x(i), grid_.cell_y(j)).velocity_x;
@@ -142,7 +159,7 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
   copy_from_host(a_->state.e.f, e);
   copy_from_host(a_->state.u.f, u);
   copy_from_host(a_->state.v.f, v);
-  if (materials_.two) {
+  if (materials_.traced()) {
     copy_from_host(a_->materials.alpha, alpha);
     copy_from_host(a_->materials.m1, m1);
   }
@@ -159,7 +176,7 @@ void GasSolver::initialise(const std::function<GasPoint(double, double)>& state_
 }
 
 void GasSolver::apply_boundaries() {
-  if (materials_.two) fill_material_ghosts(material_fields(), grid_, options_.boundaries);
+  if (materials_.traced()) fill_material_ghosts(material_fields(), grid_, options_.boundaries);
   fill_ghosts(state(), grid_, boundary_context());
 }
 
@@ -244,7 +261,7 @@ void GasSolver::step(double dt) {
 GasTotals GasSolver::totals(const CellRegion& region) const {
   const TotalsSum t = reduce_sum(
       "cip.totals", static_cast<index_t>(grid_.nx) * grid_.ny, TotalsSum{0, 0, 0, 0, 0, 0},
-      TotalsOfCell{state(), material_fields(), materials_.two, immersed_boundary().cell_active, grid_.nx,
+      TotalsOfCell{state(), material_fields(), materials_.traced(), immersed_boundary().cell_active, grid_.nx,
                    grid_.cell_area(), grid_, region});
   GasTotals out;
   out.mass = t.m;
@@ -271,6 +288,14 @@ std::vector<GasSample> GasSolver::sample(const std::vector<std::array<double, 2>
   return blastsim::to_host(out_d);
 }
 
+double GasSolver::traced_reach(std::array<double, 2> center, double min_fraction, double min_pressure,
+                               double max_radius) const {
+  if (!materials_.traced()) return 0.0;
+  return reduce_max("cip.traced_reach", static_cast<index_t>(grid_.nx) * grid_.ny, 0.0,
+                    TracedCellDistance{state(), material_fields(), immersed_boundary().cell_active, materials_, grid_,
+                                       center[0], center[1], min_fraction, min_pressure, max_radius});
+}
+
 HostGasFields GasSolver::to_host() const {
   const PaddedShape sh = grid_.padded_shape();
   const std::vector<double> rho = blastsim::to_host(a_->state.rho.f), e = blastsim::to_host(a_->state.e.f);
@@ -288,6 +313,7 @@ HostGasFields GasSolver::to_host() const {
   h.v.resize(n);
   h.active.resize(n);
   if (materials_.two) h.alpha.resize(n);
+  if (materials_.traced()) h.traced.resize(n);
   for (int j = 0; j < grid_.ny; ++j) {
     for (int i = 0; i < grid_.nx; ++i) {
       const size_t k = static_cast<size_t>(j) * grid_.nx + i;
@@ -303,6 +329,7 @@ HostGasFields GasSolver::to_host() const {
       h.u[k] = 0.5 * (u[sh.offset(i, j)] + u[sh.offset(i + 1, j)]);
       h.v[k] = 0.5 * (v[sh.offset(i, j)] + v[sh.offset(i, j + 1)]);
       h.active[k] = active[sh.offset(i, j)];
+      if (materials_.traced()) h.traced[k] = m1[sh.offset(i, j)] / h.rho[k];
     }
   }
   return h;
@@ -407,11 +434,13 @@ void GasSolver::read_checkpoint(CheckpointReader& r) {
   steps_ = r.value<long long>("gas.steps");
   if (!std::isfinite(time_) || time_ < 0) r.fail("gas.time", "not a finite time >= 0");
   if (steps_ < 0 || steps_ > kMaxCheckpointSteps) r.fail("gas.steps", "negative or above 1e15");
-  // The material fields exist exactly in a two-material run (an empty record matches a one-gas case only).
-  const size_t material_size = materials_.two ? static_cast<size_t>(grid_.padded_shape().size()) : 0;
+  // The material fields exist exactly in a run with products or a tracer (an empty record matches a one-gas
+  // case without a tracer only).
+  const size_t material_size = materials_.traced() ? static_cast<size_t>(grid_.padded_shape().size()) : 0;
   if (a_->materials.alpha.size() != material_size || a_->materials.m1.size() != material_size)
-    r.fail("gas.alpha", materials_.two ? "empty: a checkpoint of a one-gas run, this case has detonation products"
-                                       : "present: a checkpoint of a run with detonation products, this case has one gas");
+    r.fail("gas.alpha", materials_.traced()
+                            ? "empty: a checkpoint of a one-gas run without a tracer, this case has products or a tracer"
+                            : "present: a checkpoint of a run with products or a tracer, this case has neither");
   // The masks are flags: anything but 0 and 1 is damage.
   const std::pair<const char*, const DeviceVector<std::uint8_t>*> masks[] = {
       {"gas.cell_active", &a_->immersed.cell_active},

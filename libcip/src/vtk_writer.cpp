@@ -41,6 +41,7 @@ void write_gas_vti(const std::string& path, const GasGrid& grid, const HostGasFi
   add_scalar(image, "pressure", h.p);
   add_scalar(image, "internal_energy", h.e);
   if (!h.alpha.empty()) add_scalar(image, "products_fraction", h.alpha);
+  if (!h.traced.empty()) add_scalar(image, "blast_gas_fraction", h.traced);
   vtkNew<vtkDoubleArray> vel;
   vel->SetName("velocity");
   vel->SetNumberOfComponents(3);

@@ -104,9 +104,12 @@ void check_mesh_holes(const MeshSpec& s, const std::vector<std::string>& labels)
 }
 
 void check_joint_lines(const MeshSpec& s) {
-  for (std::size_t k = 0; k < s.joint_lines.size(); ++k) {
-    const Segment& g = s.joint_lines[k];
-    const std::string label = s.label + ".joint_line." + std::to_string(k);
+  for (std::size_t k = 0; k < s.joint_lines.size(); ++k)
+    check_mesh_segment(s, s.joint_lines[k], s.label + ".joint_line." + std::to_string(k));
+}
+
+void check_mesh_segment(const MeshSpec& s, const Segment& g, const std::string& label) {
+  {
     auto point = [](const std::array<double, 2>& p) { return "(" + num(p[0]) + ", " + num(p[1]) + ") m"; };
     if (s.shape == MeshShape::rectangle_with_hole || s.ring_mesher)
       throw InputError(label + ": joint lines are made by Gmsh for shape = \"rectangle\", \"disc\", \"disc_with_hole\", "
@@ -148,7 +151,10 @@ NamedMesh build_mesh(const MeshSpec& s) {
 
 RockModel build_rock_model(const RockModelSpec& spec) {
   RockModel m;
-  m.mesh = build_mesh(spec.mesh);
+  MeshSpec mesh = spec.mesh;
+  if (mesh.shape != MeshShape::file)  // a built shape follows the pre-cut cracks
+    for (const PreCutCrack& c : spec.cracks) mesh.joint_lines.push_back(c.segment);
+  m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
   m.solver = std::make_unique<RockSolver>(m.topology, spec.material, spec.options);
   RockSolver& solver = *m.solver;
@@ -189,6 +195,18 @@ RockModel build_rock_model(const RockModelSpec& spec) {
     viscous.insert(viscous.end(), slots.begin(), slots.end());
   }
   if (!viscous.empty()) solver.set_viscous_boundary(viscous);
+  for (const PreCutCrack& c : spec.cracks) {
+    const double tolerance = 1e-6 * std::max(spec.mesh.element_size, std::hypot(c.segment.b[0] - c.segment.a[0],
+                                                                               c.segment.b[1] - c.segment.a[1]));
+    std::vector<int> joints = solver.joints_on_segment(c.segment.a[0], c.segment.a[1], c.segment.b[0], c.segment.b[1],
+                                                       tolerance);
+    if (joints.empty())
+      throw InputError(c.label + ": no joint of the rock mesh lies along the segment from [" + num(c.segment.a[0]) + ", " +
+                       num(c.segment.a[1]) + "] to [" + num(c.segment.b[0]) + ", " + num(c.segment.b[1]) +
+                       "] m (a mesh file needs edges along it; a built shape needs it inside the rock)");
+    solver.break_joints(joints);
+    m.crack_joints.push_back(std::move(joints));
+  }
   std::vector<std::array<double, 2>> points;
   std::vector<double> until;
   for (const ProbeSpec& p : spec.probes) points.push_back(p.position), until.push_back(p.until);

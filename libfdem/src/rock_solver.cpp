@@ -249,7 +249,7 @@ void RockSolver::step(double dt) {
 
 NodeSpeedPeak RockSolver::peak_speed_kernel() const { return NodeSpeedPeak{device_ptr(a_->speed_peak)}; }
 
-void RockSolver::advance(double dt, int substeps) {
+void RockSolver::advance(double dt, int substeps, const std::function<void(int)>& before_step) {
   if (substeps < 1) throw std::invalid_argument("RockSolver::advance: substeps must be at least 1");
   if (pending_time_ != 0) throw std::logic_error("RockSolver::advance: finish_motion() of the previous advance missing");
   if (!(dt > 0) || dt > stable_dt_) {
@@ -262,6 +262,7 @@ void RockSolver::advance(double dt, int substeps) {
   const double ahead = last_speed_ * dt * (substeps - 1);
   if (options_.contact && 2 * (travel_since_build_ + ahead) > buffer_) rebuild_contact_grid();
   for (int k = 0; k < substeps; ++k) {
+    if (before_step) before_step(k);
     triangle_forces(dt);
     joint_forces();
     contact_forces(dt);
@@ -399,13 +400,25 @@ void RockSolver::set_viscous_boundary(const std::vector<int>& slots) {
   copy_from_host(a.node_loads.dashpot, C);
 }
 
+namespace {
+//! Copies a host array of 2 values per node into the x and y arrays of the nodes; `what` names the caller.
+void copy_node_pairs(const std::vector<double>& xy, int nodes, DeviceVector<double>& x, DeviceVector<double>& y,
+                     const char* what) {
+  if (xy.size() != 2 * static_cast<size_t>(nodes))
+    throw InputError(std::string(what) + " needs 2 values per node (" + std::to_string(2 * nodes) + ")");
+  std::vector<double> hx(nodes), hy(nodes);
+  for (int n = 0; n < nodes; ++n) hx[n] = xy[2 * n], hy[n] = xy[2 * n + 1];
+  copy_from_host(x, hx);
+  copy_from_host(y, hy);
+}
+}  // namespace
+
 void RockSolver::set_velocities(const std::vector<double>& vxy) {
-  if (vxy.size() != 2 * static_cast<size_t>(node_count()))
-    throw InputError("set_velocities needs 2 values per node (" + std::to_string(2 * node_count()) + ")");
-  std::vector<double> hx(node_count()), hy(node_count());
-  for (int n = 0; n < node_count(); ++n) hx[n] = vxy[2 * n], hy[n] = vxy[2 * n + 1];
-  copy_from_host(a_->nodes.vx, hx);
-  copy_from_host(a_->nodes.vy, hy);
+  copy_node_pairs(vxy, node_count(), a_->nodes.vx, a_->nodes.vy, "set_velocities");
+}
+
+void RockSolver::set_positions(const std::vector<double>& xy) {
+  copy_node_pairs(xy, node_count(), a_->nodes.x, a_->nodes.y, "set_positions");
 }
 
 void RockSolver::set_edge_pressure(const std::vector<int>& slots, double pressure) {

@@ -57,8 +57,10 @@ BlastholeSample BlastholeMonitor::sample(const cip::GasSolver& gas, const fdem::
   // Gas at the outer surface: detonation gas is taken to have left the rock where the pressure just outside
   // the original surface exceeds twice the ambient (the air pushed by the rock stays within a few kPa). The
   // outflow's speed: the mass-flux-weighted mean outward speed, sum rho u_n^2 / sum rho u_n, over the points
-  // where such gas flows out (u_n > 0), and the largest single outward speed there.
-  double out_p = 0, out_speed = 0, flux = 0, momentum_flux = 0;
+  // where such gas flows out (u_n > 0), and the largest single outward speed there. The blast gas (the traced
+  // gas) is measured the same way on the points where it is at least kBlastFraction of the gas.
+  const double p_blast = kBlastPressure * p_ambient_;
+  double out_p = 0, out_speed = 0, flux = 0, momentum_flux = 0, blast_flux = 0, blast_momentum = 0, blast_y = 0;
   for (size_t k = kWallPoints; k < g.size(); ++k) {
     out_p = std::max(out_p, g[k].p);
     const std::array<double, 2>& o = outward_[k - kWallPoints];
@@ -67,23 +69,33 @@ BlastholeSample BlastholeMonitor::sample(const cip::GasSolver& gas, const fdem::
       out_speed = std::max(out_speed, un);
       flux += g[k].rho * un, momentum_flux += g[k].rho * un * un;
     }
+    if (g[k].p >= p_blast) blast_y = std::max(blast_y, g[k].traced);
+    if (g[k].p >= p_blast && g[k].traced >= kBlastFraction && un > 0) {
+      blast_flux += g[k].rho * g[k].traced * un, blast_momentum += g[k].rho * g[k].traced * un * un;
+    }
   }
   s.outer_pressure_max = out_p, s.outer_speed_max = out_speed;
   s.outer_flux_speed = flux > 0 ? momentum_flux / flux : 0.0;
+  s.outer_blast_speed = blast_flux > 0 ? blast_momentum / blast_flux : 0.0;
+  const BlastholeGeometry& geo = geometry_;
+  s.blast_front = gas.traced_reach(geo.center, kBlastFraction, p_blast, geo.outer_radius);
+  double crack_y = 0;
+  if (crack) {
+    s.blast_front_crack = crack->blast_front(rock, geo.center, kBlastFraction, p_blast);
+    s.blast_front = std::max(s.blast_front, s.blast_front_crack);
+    crack_y = crack->outer_blast_fraction(rock, geo.center, 0.5 * (geo.hole_radius + geo.outer_radius), p_blast);
+  }
+  s.outer_blast_fraction = std::max(blast_y, crack_y);
   const fdem::RockEnergies e = rock.energies();
   s.broken_joints = e.broken_joints, s.crack_length = e.crack_length;
   BlastholeEvents& ev = events_;
   if (ev.first_crack < 0 && e.broken_joints > 0) ev.first_crack = s.time;
   if (ev.ejection < 0 && out_p > 2 * p_ambient_) ev.ejection = s.time, ev.ejection_speed = out_speed, ev.ejection_pressure = out_p;
   if (ev.ejection >= 0 && s.outer_flux_speed > ev.jet_speed) ev.jet_speed = s.outer_flux_speed, ev.jet_time = s.time;
-  if (crack) {
-    const BlastholeGeometry& g = geometry_;
-    const double hole_gas = hole_gas_pressure(s.wall_pressure_mean);
-    s.outer_crack_pressure = crack->mouth_pressure(rock, g.center, 0.5 * (g.hole_radius + g.outer_radius));
-    s.crack_gas_front = crack->front(rock, g.center, hole_gas);
-    if (ev.crack_arrival < 0 && s.outer_crack_pressure > hole_gas)
-      ev.crack_arrival = s.time, ev.crack_arrival_pressure = s.outer_crack_pressure;
-  }
+  if (ev.blast_arrival < 0 && s.outer_blast_fraction >= kBlastFraction)
+    ev.blast_arrival = s.time, ev.blast_arrival_crack = blast_y >= kBlastFraction ? 0.0 : 1.0;
+  if (ev.blast_arrival >= 0 && s.outer_blast_speed > ev.blast_speed)
+    ev.blast_speed = s.outer_blast_speed, ev.blast_speed_time = s.time;
   return s;
 }
 

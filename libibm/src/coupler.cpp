@@ -46,7 +46,9 @@ double GasRockCoupler::ambient_pressure() const {
 }
 
 CouplingContext GasRockCoupler::context() const {
-  return {gas_, rock_, ambient_, ambient_pressure(), immersed_->owners(), !masks_set_};
+  double margin = 0.0;
+  for (const auto& p : processes_) margin = std::max(margin, p->owner_margin(gas_.grid()));
+  return {gas_, rock_, ambient_, ambient_pressure(), immersed_->owners(), !masks_set_, margin};
 }
 
 void GasRockCoupler::rock_to_gas() {
@@ -91,7 +93,18 @@ void GasRockCoupler::step(double dt, int rock_substeps) {
   gas_.step(dt);
   for (auto& p : processes_) p->after_gas(ctx, dt);
   gas_to_rock();
-  rock_.advance(dt / rock_substeps, rock_substeps);
+  std::vector<CouplingProcess*> within;  // processes that update their loads between the rock's substeps
+  for (auto& p : processes_)
+    if (p->updates_rock_steps()) within.push_back(p.get());
+  if (within.empty()) {
+    rock_.advance(dt / rock_substeps, rock_substeps);
+  } else {
+    rock_.advance(dt / rock_substeps, rock_substeps, [&](int k) {
+      if (k == 0) return;
+      CouplingContext c = context();
+      for (CouplingProcess* p : within) p->before_rock_step(c, k);
+    });
+  }
   fire_due();  // before the next step chooses its dt: the products' sound speed must set it
   const cip::GasGrid& g = gas_.grid();
   const index_t cells = static_cast<index_t>(g.nx) * g.ny;

@@ -18,9 +18,13 @@ void CrackGasOptions::validate() const {
     throw InputError(std::string("crack gas: ") + key + " = " + std::to_string(v) + ": " + allowed);
   };
   if (!(residual_aperture > 0) || !std::isfinite(residual_aperture)) bad("residual_aperture", residual_aperture, "must be > 0 [m]");
-  if (!(friction_factor >= 0) || !std::isfinite(friction_factor)) bad("friction_factor", friction_factor, "must be >= 0");
+  if (friction_factor && (!(*friction_factor >= 0) || !std::isfinite(*friction_factor)))
+    bad("friction_factor", *friction_factor, "must be >= 0");
+  if (roughness && (!(*roughness > 0) || !std::isfinite(*roughness))) bad("roughness", *roughness, "must be > 0 [m]");
   if (!(viscosity >= 0) || !std::isfinite(viscosity)) bad("viscosity", viscosity, "must be >= 0 [Pa s]");
   if (!(courant > 0 && courant <= 1)) bad("courant", courant, "must be in (0, 1]");
+  if (!(handover_width >= 1) || !std::isfinite(handover_width))
+    bad("handover_width", handover_width, "must be >= 1 [cells]");
 }
 
 namespace detail {
@@ -83,6 +87,7 @@ CrackGas::CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment
   a.end_fluxes.end_area.assign(2 * static_cast<std::size_t>(segments_), 0.0);
   a.mouths.open.assign(junctions_, 0);
   a.mouths.reservoir.assign(junctions_, ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
+  a.mouths.reservoir_mass.assign(junctions_, std::numeric_limits<double>::infinity());
   a.deposits.deposit.assign(junctions_, ChannelConserved{0, 0, 0, 0, 0});
 }
 
@@ -161,10 +166,10 @@ double CrackGas::stable_dt() const {
 
 void CrackGas::step(double dt) {
   update_primitives();
-  step_from_primitives(dt);
+  step_from_primitives(dt, dt);
 }
 
-void CrackGas::step_from_primitives(double dt) {
+void CrackGas::step_from_primitives(double dt, double interval) {
   detail::CrackArrays& a = *a_;
   const CrackGraph g = a.graph.view();
   const CrackGeometry<Access::read> geo = a.geometry.read();
@@ -173,10 +178,10 @@ void CrackGas::step_from_primitives(double dt) {
                  FaceStateKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.view(), options_.second_order, dt});
   for_each_index("crack.junctions", junctions_,
                  JunctionFluxKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.read(), a.end_fluxes.view(),
-                                    a.deposits.view(), dt});
+                                    a.deposits.view(), dt, interval});
   for_each_index("crack.update", segments_,
                  SegmentUpdateKernel{geo, a.segments.view(), a.end_fluxes.read(),
-                                     ChannelFlowParams{options_.friction_factor, options_.viscosity}, dt});
+                                     options_.flow(), dt});
 }
 
 int CrackGas::advance(double dt) {
@@ -187,7 +192,7 @@ int CrackGas::advance(double dt) {
     throw InstabilityError("crack gas state not valid: " + describe_invalid_segment());
   const int steps = std::isfinite(limit) ? std::max(1, static_cast<int>(std::ceil(dt / limit * (1 - 1e-12)))) : 1;
   for (int k = 0; k < steps; ++k) {  // each substep starts from the primitives just computed
-    step_from_primitives(dt / steps);
+    step_from_primitives(dt / steps, dt);
     update_primitives();
   }
   return steps;
@@ -237,10 +242,11 @@ CrackSegmentFields CrackGas::segment_fields() const {
   const std::vector<ChannelPrimitive> p = primitives();
   const std::vector<ChannelConserved> m = gas();
   const std::size_t n = kind.size();
-  CrackSegmentFields f{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  CrackSegmentFields f{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0),
+                       std::vector<double>(n, 0.0)};
   for (std::size_t j = 0; j < n; ++j) {
     if (kind[j] != kSegmentNone) f.aperture[j] = w[j];
-    if (kind[j] == kSegmentGas) f.gas_pressure[j] = p[j].p, f.gas_mass[j] = m[j].m;
+    if (kind[j] == kSegmentGas) f.gas_pressure[j] = p[j].p, f.gas_mass[j] = m[j].m, f.blast_gas_fraction[j] = p[j].Y;
   }
   return f;
 }

@@ -12,19 +12,30 @@
 #include <thrust/sort.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
+#include <type_traits>
 
 namespace blastsim::ibm {
 
 namespace detail {
 BLASTSIM_CONST_STORAGE(CrackJunctionPlaces, BLASTSIM_CRACK_JUNCTION_PLACES)
+BLASTSIM_CONST_STORAGE(CrackSegmentParams, BLASTSIM_CRACK_SEGMENT_PARAMS)
 BLASTSIM_STATE_STORAGE(CrackMouthCells, BLASTSIM_CRACK_MOUTH_CELLS)
 BLASTSIM_STATE_STORAGE(CrackHandovers, BLASTSIM_CRACK_HANDOVERS)
+BLASTSIM_STATE_STORAGE(CrackCushion, BLASTSIM_CRACK_CUSHION)
 BLASTSIM_STATE_STORAGE(CrackDepositOrder, BLASTSIM_CRACK_DEPOSIT_ORDER)
+BLASTSIM_STATE_STORAGE(CrackExchangeLedger, BLASTSIM_CRACK_EXCHANGE_LEDGER)
+BLASTSIM_STATE_STORAGE(CrackWallLedger, BLASTSIM_CRACK_WALL_LEDGER)
 struct CrackCouplingArrays {
   CrackJunctionPlacesArrays places;   // per junction
-  CrackMouthCellsArrays mouth_cells;  // per junction
+  CrackSegmentParamsArrays params;    // per segment
+  CrackMouthCellsArrays mouth_cells;  // kMouthSamples per junction
   CrackHandoversArrays handovers;     // per segment
+  CrackCushionArrays cushion;         // per segment
   CrackDepositOrderArrays order;      // per record: junctions, then segments
+  CrackExchangeLedgerArrays exchange; // per record
+  CrackWallLedgerArrays walls;        // per segment
 };
 }  // namespace detail
 
@@ -51,52 +62,96 @@ CrackGasCoupling::CrackGasCoupling(const fdem::RockSolver& rock, const cip::GasM
   std::vector<std::uint8_t> outline(junctions, 0);
   for (const fdem::BoundaryEdge& b : rock.boundary_edges()) outline[vertex[b.n0]] = outline[vertex[b.n1]] = 1;
   copy_from_host(a_->places.outline, outline);
-  a_->mouth_cells.cell.assign(junctions, -1);
+  a_->params.initial_aperture.assign(segments, 0.0);
+  a_->mouth_cells.cell.assign(kMouthSamples * static_cast<std::size_t>(junctions), -1);
+  a_->mouth_cells.sharers.assign(kMouthSamples * static_cast<std::size_t>(junctions), 0);
+  a_->mouth_cells.share.assign(kMouthSamples * static_cast<std::size_t>(junctions), ChannelConserved{0, 0, 0, 0, 0});
+  a_->handovers.pending.assign(segments, 0);
   a_->handovers.cell.assign(segments, -1);
   a_->handovers.gas.assign(segments, ChannelConserved{0, 0, 0, 0, 0});
-  a_->handovers.load_factor.assign(segments, 1.0);
-  a_->order.key.assign(junctions + segments, 0);
-  a_->order.record.assign(junctions + segments, 0);
+  a_->cushion.for_each([&](const char*, auto& v) { v.assign(segments, typename std::decay_t<decltype(v)>::value_type{}); });
+  const std::size_t records = kMouthSamples * static_cast<std::size_t>(junctions) + segments;
+  a_->exchange.to_grid.assign(records, ChannelConserved{0, 0, 0, 0, 0});
+  a_->walls.wall_work.assign(segments, 0.0);
+  a_->order.key.assign(records, 0);
+  a_->order.record.assign(records, 0);
 }
 
 CrackGasCoupling::~CrackGasCoupling() = default;
 
-void CrackGasCoupling::before_gas(CouplingContext& ctx, double /*dt*/) {
-  for_each_index("ibm.crack.geometry", crack_->segment_count(),
-                 CrackGeometryKernel{ctx.rock.view(), ctx.gas.materials(), ctx.gas.grid(),
-                                     ctx.gas.immersed_boundary().cell_active, crack_->geometry(), crack_->segments(),
-                                     a_->handovers.view(), crack_->options().residual_aperture});
+void CrackGasCoupling::set_initial_apertures(const std::vector<int>& joints, double aperture) {
+  if (!(aperture >= 0) || !std::isfinite(aperture))
+    throw InputError("crack gas: initial aperture " + std::to_string(aperture) + " m: must be >= 0");
+  std::vector<double> a = to_host(a_->params.initial_aperture);
+  for (const int j : joints) {
+    if (j < 0 || j >= crack_->segment_count())
+      throw InputError("crack gas: joint " + std::to_string(j) + " out of range for an initial aperture");
+    a[j] = aperture;
+  }
+  copy_from_host(a_->params.initial_aperture, a);
+}
+
+HandoverGaps CrackGasCoupling::handover_gaps(const cip::GasGrid& g) const {
+  const double gap = crack_->options().handover_width * std::max(g.dx, g.dy);
+  return {gap, 0.5 * gap};
+}
+
+void CrackGasCoupling::cover(CouplingContext& ctx) {
+  const int ns = crack_->segment_count();
+  const fdem::RockView rock = ctx.rock.view();
+  for_each_index("ibm.crack.geometry", ns,
+                 CrackGeometryKernel{rock, ctx.gas.materials(), a_->params.view(), crack_->geometry(),
+                                     crack_->segments(), a_->handovers.view(), a_->cushion.view(), a_->walls.view(),
+                                     crack_->options().residual_aperture,
+                                     handover_gaps(ctx.gas.grid()), 0.5 * ctx.rock.last_step()});
+  for_each_index("ibm.crack.gap_cover", ns, CrackGapCoverKernel{rock, ctx.gas.grid(), crack_->segments(), ctx.owners});
 }
 
 void CrackGasCoupling::after_gas(CouplingContext& ctx, double dt) {
-  // the mouths, from the cells' new gas
+  const int ns = crack_->segment_count(), mouth_records = kMouthSamples * crack_->junction_count();
+  const int records = mouth_records + ns;
+  const cip::GasGrid g = ctx.gas.grid();
+  // the hand-overs' cells, then the mouths, from the cells' new gas
+  for_each_index("ibm.crack.handover_cells", ns,
+                 HandoverCellKernel{ctx.rock.view(), g, ctx.gas.immersed_boundary().cell_active, crack_->segments(),
+                                    a_->handovers.view()});
   for_each_index("ibm.crack.mouths", crack_->junction_count(),
-                 CrackMouthKernel{ctx.rock.view(), ctx.gas.materials(), ctx.gas.grid(),
-                                  ctx.gas.immersed_boundary().cell_active, ctx.gas.cells(), crack_->graph(),
-                                  crack_->segments(), a_->places.view(), crack_->mouths(),
-                                  a_->mouth_cells.view()});
-  crack_->advance(dt);
-  // what the mouths gave the cells, and the hand-overs, summed per cell in sorted order
-  const int nj = crack_->junction_count(), ns = crack_->segment_count(), records = nj + ns;
+                 CrackMouthKernel{ctx.rock.view(), ctx.gas.materials(), g, ctx.gas.immersed_boundary().cell_active,
+                                  ctx.gas.cells(), crack_->graph(), crack_->segments(), a_->places.view(),
+                                  crack_->mouths(), a_->mouth_cells.view()});
+  // every record's cell, sorted: the mouths' shares of the cells they draw on now, the deposits after the step
   for_each_index("ibm.crack.keys", records,
-                 CrackDepositKeyKernel{a_->mouth_cells.read(), a_->handovers.read(), a_->order.view(), nj});
+                 CrackDepositKeyKernel{a_->mouth_cells.read(), a_->handovers.read(), a_->order.view(), mouth_records});
   thrust::sequence(thrust::device, a_->order.record.begin(), a_->order.record.end());
   thrust::stable_sort_by_key(thrust::device, a_->order.key.begin(), a_->order.key.end(), a_->order.record.begin());
   count_host_wait();  // the sequence and the sort block
-  const cip::GasGrid g = ctx.gas.grid();
+  for_each_index("ibm.crack.mouth_sharers", records,
+                 MouthSharersKernel{a_->order.read(), a_->mouth_cells.view(), mouth_records, records});
+  for_each_index("ibm.crack.mouth_gas", crack_->junction_count(),
+                 MouthHeldGasKernel{g, ctx.gas.cells(), a_->mouth_cells.read(), crack_->mouths()});
+  crack_->advance(dt);
+  // what the mouths gave the cells, and the hand-overs, summed per cell in sorted order
   for_each_index("ibm.crack.deposit", records,
-                 CrackDepositKernel{a_->order.read(), crack_->deposit_view(), a_->handovers.read(), nj, records, g.nx,
+                 CrackDepositKernel{a_->order.read(), a_->mouth_cells.read(), crack_->deposit_view(), a_->handovers.read(),
+                                    a_->exchange.view(), mouth_records, records, g.nx,
                                     g.cell_area(), ctx.gas.cells()});
   crack_->clear_deposits();
+  for_each_index("ibm.crack.handover_clear", ns, HandoverClearKernel{a_->handovers.view()});
 }
 
-void CrackGasCoupling::load_rock(CouplingContext& ctx) {
+void CrackGasCoupling::load_rock(CouplingContext& ctx) { load_cushions(ctx, true); }
+
+void CrackGasCoupling::before_rock_step(CouplingContext& ctx, int /*k*/) { load_cushions(ctx, false); }
+
+void CrackGasCoupling::load_cushions(CouplingContext& ctx, bool start) {
   const fdem::RockView rock = ctx.rock.view();
-  for_each_index("ibm.crack.face_pressure", rock.joint_count,
-                 CrackFacePressureKernel{rock, crack_->segments(), a_->handovers.read()});
+  for_each_index(start ? "ibm.crack.cushion_start" : "ibm.crack.cushion", rock.joint_count,
+                 CrackCushionKernel{rock, a_->params.view(), crack_->segments(), a_->cushion.view(),
+                                    crack_->options().residual_aperture, 0.5 * ctx.rock.last_step(), start});
 }
 
-double CrackGasCoupling::mouth_pressure(const fdem::RockSolver& rock, std::array<double, 2> center, double radius) const {
+double CrackGasCoupling::outer_blast_fraction(const fdem::RockSolver& rock, std::array<double, 2> center, double radius,
+                                              double min_pressure) const {
   const CrackGraph g = crack_->graph();
   const CrackSegments<Access::read> seg = crack_->segments();
   const fdem::RockReadView view = rock.view();
@@ -104,30 +159,32 @@ double CrackGasCoupling::mouth_pressure(const fdem::RockSolver& rock, std::array
   const fdem::NodeMotion<Access::read> nodes = view.nodes;
   const std::uint8_t* outline = a_->places.view().outline;
   const double cx = center[0], cy = center[1], r2 = radius * radius;
-  return reduce_max("ibm.crack.mouth_pressure", crack_->segment_count(), 0.0, [=] BLAST_HD(index_t si) {
+  return reduce_max("ibm.crack.outer_blast", crack_->segment_count(), 0.0, [=] BLAST_HD(index_t si) {
     const int s = static_cast<int>(si);
-    if (seg.kind[s] != kSegmentGas) return 0.0;
+    if (seg.kind[s] != kSegmentGas || !(seg.prim[s].p >= min_pressure)) return 0.0;
     const fdem::JointNodes jn = joint[s];
-    double p = 0.0;
+    double y = 0.0;
     for (int e = 0; e < 2; ++e) {
       if (!outline[g.segment_junction[2 * s + e]]) continue;
       const int node = e == 0 ? jn.a0 : jn.a1;
       const double dx = nodes.x[node] - cx, dy = nodes.y[node] - cy;
-      if (dx * dx + dy * dy > r2) p = seg.prim[s].p;
+      if (dx * dx + dy * dy > r2) y = seg.prim[s].Y;
     }
-    return p;
+    return y;
   });
 }
 
-double CrackGasCoupling::front(const fdem::RockSolver& rock, std::array<double, 2> center, double pressure) const {
+double CrackGasCoupling::blast_front(const fdem::RockSolver& rock, std::array<double, 2> center, double min_fraction,
+                                     double min_pressure) const {
   const CrackSegments<Access::read> seg = crack_->segments();
   const fdem::RockReadView view = rock.view();
   const fdem::JointNodes* joint = view.joint.nodes;
   const fdem::NodeMotion<Access::read> x = view.nodes;
   const double cx = center[0], cy = center[1];
-  return reduce_max("ibm.crack.front", static_cast<index_t>(crack_->segment_count()), 0.0, [=] BLAST_HD(index_t si) {
+  return reduce_max("ibm.crack.blast_front", static_cast<index_t>(crack_->segment_count()), 0.0, [=] BLAST_HD(index_t si) {
     const int s = static_cast<int>(si);
-    if (seg.kind[s] != kSegmentGas || !(seg.prim[s].p > pressure)) return 0.0;
+    const ChannelPrimitive& P = seg.prim[s];
+    if (seg.kind[s] != kSegmentGas || !(P.Y >= min_fraction) || !(P.p >= min_pressure)) return 0.0;
     const fdem::JointNodes jn = joint[s];
     const double dx = 0.25 * (x.x[jn.a0] + x.x[jn.a1] + x.x[jn.b0] + x.x[jn.b1]) - cx;
     const double dy = 0.25 * (x.y[jn.a0] + x.y[jn.a1] + x.y[jn.b0] + x.y[jn.b1]) - cy;
@@ -138,10 +195,43 @@ double CrackGasCoupling::front(const fdem::RockSolver& rock, std::array<double, 
 void CrackGasCoupling::add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const {
   d.crack_gas = true;
   d.crack = crack_->totals(ctx.ambient_pressure);
+  // Gas handed to the grid and not yet in a cell (a hand-over in the rock -> gas update that ends a step)
+  auto pending = [&](const char* label, double ChannelConserved::*field) {
+    return reduce_sum(label, crack_->segment_count(), 0.0, PendingHandoverOf{a_->handovers.read(), field});
+  };
+  d.crack.mass += pending("ibm.crack.pending_mass", &ChannelConserved::m);
+  d.crack.energy += pending("ibm.crack.pending_energy", &ChannelConserved::E);
+  d.crack.products_mass += pending("ibm.crack.pending_products", &ChannelConserved::m1);
+  const ChannelConserved* given = a_->exchange.read().to_grid;
+  const index_t records = static_cast<index_t>(a_->exchange.to_grid.size());
+  d.crack.to_grid_mass = reduce_sum("ibm.crack.to_grid_mass", records, 0.0,
+                                    FieldOf<ChannelConserved>{given, &ChannelConserved::m});
+  d.crack.to_grid_energy = reduce_sum("ibm.crack.to_grid_energy", records, 0.0,
+                                      FieldOf<ChannelConserved>{given, &ChannelConserved::E});
+  const double* walls = a_->walls.read().wall_work;
+  d.crack.wall_work = reduce_sum("ibm.crack.wall_work", crack_->segment_count(), 0.0,
+                                 [=] BLAST_HD(index_t s) { return walls[s]; });
   d.energy_held += d.crack.energy;
 }
 
-void CrackGasCoupling::write_checkpoint(CheckpointWriter& w) const { crack_->write_checkpoint(w); }
-void CrackGasCoupling::read_checkpoint(CheckpointReader& r) { crack_->read_checkpoint(r); }
+void CrackGasCoupling::write_checkpoint(CheckpointWriter& w) const {
+  crack_->write_checkpoint(w);
+  write_array(w, "crack.handover_pending", a_->handovers.pending);
+  write_array(w, "crack.handover_gas", a_->handovers.gas);
+  a_->cushion.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.cushion.") + name, v); });
+  write_array(w, "crack.to_grid", a_->exchange.to_grid);
+  write_array(w, "crack.wall_work", a_->walls.wall_work);
+}
+void CrackGasCoupling::read_checkpoint(CheckpointReader& r) {
+  crack_->read_checkpoint(r);
+  const auto n = static_cast<std::size_t>(crack_->segment_count());
+  read_array(r, "crack.handover_pending", a_->handovers.pending, n);
+  read_array(r, "crack.handover_gas", a_->handovers.gas, n);
+  a_->cushion.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.cushion.") + name, v, n); });
+  read_array(r, "crack.to_grid", a_->exchange.to_grid, a_->exchange.to_grid.size());
+  read_array(r, "crack.wall_work", a_->walls.wall_work, n);
+  for (const std::uint8_t p : to_host(a_->handovers.pending))
+    if (p > 1) r.fail("crack.handover_pending", "holds a flag other than 0 or 1");
+}
 
 }  // namespace blastsim::ibm

@@ -31,7 +31,7 @@ void GasLoading::load_rock(CouplingContext& ctx) {
   for_each_index("ibm.face_load", static_cast<index_t>(rock.triangle_count),
                  FaceLoadKernel{rock, g, mat, ctx.gas.material_fields(), ib.cell_active, s.rho.f, s.e.f,
                                 ctx.owners, Field2D<const double>{ctx.gas.pressure_with_viscosity().data, sh},
-                                ctx.gas.steps() > 0});
+                                ctx.gas.steps() > 0, ctx.owner_margin});
 }
 
 void GasLoading::add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const {

@@ -138,6 +138,31 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(read({"crack_gas.courant=1.5"}), Catch::Contains("crack_gas.courant"));
   CHECK_THROWS_WITH(read({"crack_gas.friction_factor=-1"}), Catch::Contains("crack_gas.friction_factor"));
   CHECK_THROWS_WITH(read({"crack_gas.aperture=1e-5"}), Catch::Contains("crack_gas.aperture"));  // unknown key
+  CHECK_THROWS_WITH(read({"crack_gas.handover_width=0.5"}), Catch::Contains("crack_gas.handover_width"));
+  CHECK_THROWS_WITH(read({"crack_gas.roughness=0"}), Catch::Contains("crack_gas.roughness"));
+  CHECK_THROWS_WITH(read({"gas.region.0.blast_gas=1"}), Catch::Contains("gas.region.0.blast_gas"));
+  // The blast gas is traced by default (conservative transport); the paper's transport cannot carry it.
+  CHECK(read({}).gas.materials().tracer);
+  CHECK_FALSE(read({"gas.region.0.blast_gas=false"}).gas.materials().tracer);
+  CHECK_THROWS_WITH(read({"gas.transport=\"paper\"", "gas.region.0.blast_gas=true"}), Catch::Contains("blast_gas"));
+  // Pre-cut cracks ([[rock.crack]] tables appended to the example): their ends inside the rock; an initial
+  // aperture needs the crack gas.
+  const std::string text = file_bytes(example);
+  auto with_crack = [&](const std::string& crack) {
+    return app::read_case(toml::parse(text + "\n[[rock.crack]]\n" + crack + "\n"));
+  };
+  const app::Case cut = with_crack("from = [0.06, 0.0]\nto = [0.3, 0.0]\ninitial_aperture = 1e-4");
+  REQUIRE(cut.rock.model.cracks.size() == 1);
+  CHECK(cut.rock.model.cracks[0].initial_aperture == 1e-4);
+  CHECK(cut.rock.model.cracks[0].label == "rock.crack.0");
+  CHECK_THROWS_WITH(with_crack("from = [0.06, 0.0]\nto = [3.0, 0.0]"), Catch::Contains("rock.crack.0"));
+  CHECK_THROWS_WITH(with_crack("from = [0.06, 0.0]\nto = [0.3, 0.0]\ninitial_aperture = -1"),
+                    Catch::Contains("rock.crack.0.initial_aperture"));
+  CHECK_THROWS_WITH(with_crack("from = [0.06, 0.0]\nto = [0.3, 0.0]\nwidth = 1e-4"), Catch::Contains("rock.crack.0.width"));
+  std::string dry = text;  // the example with its crack gas off
+  dry.replace(dry.find("enabled = true"), 14, "enabled = false");
+  CHECK_THROWS_WITH(app::read_case(toml::parse(dry + "\n[[rock.crack]]\nfrom = [0.06, 0.0]\nto = [0.3, 0.0]\ninitial_aperture = 1e-4\n")),
+                    Catch::Contains("rock.crack.0.initial_aperture"));
   // With one dt for both solvers, a fixed dt above the rock's stable step is refused at the start, naming
   // the stable value.
   std::ostringstream log;

@@ -129,21 +129,21 @@ std::vector<double> crack_arrivals(int N, double t_max) {
     const std::vector<std::uint8_t> kind = c.coupler.crack_gas()->crack_gas().kinds();
     for (size_t k = 0; k < stations.size(); ++k)
       if (arrival[k] < 0 && kind[at[k]] == ibm::kSegmentGas && p[at[k]].p > p_quarter) arrival[k] = c.gas.time();
-    // The crack gas's front above p_hole / 4 (the driver's crack_gas_front_radius_m) against the stations: the
-    // distance from the hole centre of the farthest cut joint above it, computed here from the joints' gas.
+    // The crack gas's front at p_hole / 4 (blast_front() with no fraction asked) against the stations: the
+    // distance from the hole centre of the farthest cut joint at it, computed here from the joints' gas.
     double farthest = 0.0;
     const fdem::RockSnapshot s = c.rock.snapshot();
     for (int j : crack) {
-      if (kind[j] != ibm::kSegmentGas || !(p[j].p > p_quarter)) continue;
+      if (kind[j] != ibm::kSegmentGas || !(p[j].p >= p_quarter)) continue;
       const auto& n = s.joint_nodes[j];
       double xm = 0, ym = 0;
       for (int q = 0; q < 4; ++q) xm += 0.25 * s.x[n[q]], ym += 0.25 * s.y[n[q]];
       farthest = std::fmax(farthest, std::hypot(xm, ym));
     }
-    CHECK_THAT(c.coupler.crack_gas()->front(c.rock, {0.0, 0.0}, p_quarter), Catch::Matchers::WithinAbs(farthest, 1e-12));
+    CHECK_THAT(c.coupler.crack_gas()->blast_front(c.rock, {0.0, 0.0}, 0.0, p_quarter), Catch::Matchers::WithinAbs(farthest, 1e-12));
   }
   std::printf("C6 (%d^2 cells): crack gas front above p_hole / 4 at the end: %.4f m from the hole centre\n", N,
-              c.coupler.crack_gas()->front(c.rock, {0.0, 0.0}, p_quarter));
+              c.coupler.crack_gas()->blast_front(c.rock, {0.0, 0.0}, 0.0, p_quarter));
   return arrival;
 }
 }  // namespace

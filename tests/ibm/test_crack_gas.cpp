@@ -223,6 +223,13 @@ TEST_CASE("C3 crack channel: a closed branched network conserves mass and energy
               t0.mass, t1.mass, t1.mass / t0.mass - 1, t0.energy, t1.energy, t1.energy / t0.energy - 1, t1.max_pressure);
   CHECK(std::fabs(t1.mass / t0.mass - 1) < 1e-12);
   CHECK(std::fabs(t1.energy / t0.energy - 1) < 1e-12);
-  // The gas reached the vacuum arm's far end.
-  CHECK(c.primitives()[4 * arm - 1].rho > 0);
+  // The gas entered the vacuum arm and went along it: its front (the last segment above the solver's vacuum
+  // density) lies beyond the arm's middle, 5 cm from the junction, after 40 us.
+  const std::vector<ChannelConserved> end_gas = c.gas();
+  int front = -1;
+  for (int k = 0; k < arm; ++k)
+    if (end_gas[3 * arm + k].m > ibm::kCrackVacuumDensity * V[3 * arm + k]) front = k;
+  std::printf("C3 the vacuum arm holds gas in its first %d of %d segments (density at its end %.3e kg/m3)\n", front + 1,
+              arm, end_gas[4 * arm - 1].m / V[4 * arm - 1]);
+  CHECK(front >= arm / 2);
 }

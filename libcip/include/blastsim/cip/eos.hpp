@@ -134,6 +134,12 @@ struct GasMaterials {
   EquationOfState air;
   EquationOfState products;
   bool two = false;  //!< products present in this run
+  //! A one-gas run that traces part of its gas (docs/gas-solver.md, "Tracer"): m1 holds the partial density of
+  //! the traced gas (the blast gas of a hole), carried with the flow as a passive scalar; the equation of state
+  //! ignores it. In a two-material run the products are the traced gas and this flag is off.
+  bool tracer = false;
+  //! The partial density field m1 exists: the products' (two) or the traced gas's (tracer).
+  BLAST_HD bool traced() const { return two || tracer; }
 
   //! Volume fractions below this are pure air (or, 1 minus it, pure products) to the equation of state: the
   //! transport smears alpha ahead of an interface down to denormal numbers, where m1 / alpha is no density.

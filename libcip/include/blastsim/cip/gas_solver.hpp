@@ -101,6 +101,10 @@ class GasSolver {
   //! rarefactions; transport_kernels.hpp, kMaxCorrectionFraction). Zero in most runs; a balance counts it as
   //! a source.
   double positivity_energy() const;
+  //! The traced gas's reach [m]: the largest distance from `center` of an active cell centre within
+  //! `max_radius` [m] that holds at least `min_fraction` of the traced gas (the products, or the tracer's) at
+  //! a pressure of at least `min_pressure` [Pa]; 0 when none does or nothing is traced (a device reduction).
+  double traced_reach(std::array<double, 2> center, double min_fraction, double min_pressure, double max_radius) const;
   //! Samples the gas at host points [m] (a device gather; cost independent of the grid size).
   std::vector<GasSample> sample(const std::vector<std::array<double, 2>>& points) const;
   HostGasFields to_host() const;

@@ -89,7 +89,7 @@ BLAST_HD inline PressureSound cell_pressure_and_sound_speed(const GasMaterials& 
 struct CellContent {
   double mass;           //!< rho
   double energy;         //!< rho e, and whatever kinetic energy the giver hands on
-  double products_mass;  //!< m1 = alpha rho1 (0 in a one-gas run)
+  double products_mass;  //!< m1: alpha rho1, or the traced gas (0 in a one-gas run without a tracer)
   double alpha_mass;     //!< alpha rho (0 in a one-gas run)
 };
 
@@ -98,35 +98,39 @@ enum class GasPhase { air, products };
 
 //! The cells of the gas state, with their material fields, as the coupling sees them: it takes, mixes,
 //! deposits and replaces what cells hold through these calls, which handle the material fields (present only
-//! in a run with products), so a coupling kernel never branches on the number of materials. Access read_write
-//! for a kernel that writes (GasCells), read for one that only reads (GasCellsRead).
+//! in a run with products or a tracer), so a coupling kernel never branches on the number of materials.
+//! Access read_write for a kernel that writes (GasCells), read for one that only reads (GasCellsRead).
 template <Access A>
 struct GasCellsOf {
   GasState<A> s;
-  MaterialFields<A> m;  //!< empty in a one-gas run
-  bool two;             //!< GasMaterials::two
-  BLASTSIM_READ_CONVERSION(GasCellsOf, s BLASTSIM_COMMA m BLASTSIM_COMMA two)
+  MaterialFields<A> m;  //!< empty in a one-gas run without a tracer
+  bool two;             //!< GasMaterials::two: alpha and m1 are the products'
+  bool traced;          //!< GasMaterials::traced(): m1 exists (the products', or the traced gas's)
+  //! The solver's positivity ledger [J/m3 per cell] (GasSolver::positivity_energy()): energy a deposit could not
+  //! take from a cell's internal energy.
+  access_field<double, A> positivity_heat;
+  BLASTSIM_READ_CONVERSION(GasCellsOf, s BLASTSIM_COMMA m BLASTSIM_COMMA two BLASTSIM_COMMA traced BLASTSIM_COMMA
+                                           positivity_heat)
 
   //! What cell (i, j) holds per unit area, with `energy` [J/m3] as its energy (its internal energy, or more).
   BLAST_HD CellContent own(int i, int j, double energy) const {
     const double rho = s.rho.f(i, j);
-    return {rho, energy, two ? m.m1(i, j) : 0.0, two ? m.alpha(i, j) * rho : 0.0};
+    return {rho, energy, traced ? m.m1(i, j) : 0.0, two ? m.alpha(i, j) * rho : 0.0};
   }
   //! Adds `share` of cell (i, j)'s content to c, with `energy` [J/m3] as that cell's energy.
   BLAST_HD void add_share(CellContent& c, double share, int i, int j, double energy) const {
     c.mass += share * s.rho.f(i, j);
     c.energy += share * energy;
-    if (two) {
-      c.products_mass += share * m.m1(i, j);
-      c.alpha_mass += share * m.alpha(i, j) * s.rho.f(i, j);
-    }
+    if (traced) c.products_mass += share * m.m1(i, j);
+    if (two) c.alpha_mass += share * m.alpha(i, j) * s.rho.f(i, j);
   }
-  //! The products' volume fraction alpha and mass fraction Y of cell (i, j) (both 0 in a one-gas run).
+  //! The products' volume fraction alpha (0 in a one-gas run) and the traced gas's mass fraction Y of cell
+  //! (i, j): the products', or the tracer's (0 without either).
   struct Fractions {
     double alpha, Y;
   };
   BLAST_HD Fractions fractions(int i, int j) const {
-    return two ? Fractions{m.alpha(i, j), m.m1(i, j) / s.rho.f(i, j)} : Fractions{0.0, 0.0};
+    return {two ? m.alpha(i, j) : 0.0, traced ? m.m1(i, j) / s.rho.f(i, j) : 0.0};
   }
 
   // --- writes (GasCells only) ---
@@ -135,30 +139,37 @@ struct GasCellsOf {
   BLAST_HD void replace(int i, int j, const CellContent& c) const {
     s.rho.f(i, j) = c.mass, s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
     s.e.f(i, j) = c.energy / c.mass, s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
-    if (two) m.alpha(i, j) = c.alpha_mass / c.mass, m.m1(i, j) = c.products_mass;
+    if (two) m.alpha(i, j) = c.alpha_mass / c.mass;
+    if (traced) m.m1(i, j) = c.products_mass;
   }
-  //! Adds `add` (per unit thickness: mass [kg/m], internal energy [J/m], products mass, alpha x mass) to cell
-  //! (i, j) of area `area` [m2]; its faces keep their velocities and its derivatives their values.
+  //! Adds `add` (per unit thickness: mass [kg/m], energy [J/m], products mass, alpha x mass) to cell (i, j) of
+  //! area `area` [m2]; its faces keep their velocities and its derivatives their values. The faces' kinetic
+  //! energy changes with the cell's mass (each face carries the mean mass of its two cells: a quarter of the
+  //! added mass times the sum of the four faces' u^2, GasTotals' measure), so the cell's internal energy takes
+  //! the added energy less that change: the gas's total energy grows by exactly add.energy. Where the change
+  //! would take more than half of the cell's internal energy (a large deposit into fast-moving gas), half is
+  //! taken and the rest counted in the positivity ledger, a source of the energy budget.
   BLAST_HD void deposit(int i, int j, const CellContent& add, double area) const {
     const double m_old = s.rho.f(i, j) * area, m_new = m_old + add.mass;
-    const double E_new = s.e.f(i, j) * m_old + add.energy;
+    const double u0 = s.u.f(i, j), u1 = s.u.f(i + 1, j), v0 = s.v.f(i, j), v1 = s.v.f(i, j + 1);
+    const double kinetic = 0.25 * add.mass * (u0 * u0 + u1 * u1 + v0 * v0 + v1 * v1);
+    const double internal = s.e.f(i, j) * m_old + add.energy;
+    const double taken = kinetic > 0.5 * internal && internal > 0.0 ? 0.5 * internal : kinetic;
+    positivity_heat(i, j) += (kinetic - taken) / area;
+    const double E_new = internal - taken;
     s.rho.f(i, j) = m_new / area;
     s.e.f(i, j) = E_new / m_new;
-    if (two) {
-      m.alpha(i, j) = (m.alpha(i, j) * m_old + add.alpha_mass) / m_new;
-      m.m1(i, j) += add.products_mass / area;
-    }
+    if (two) m.alpha(i, j) = (m.alpha(i, j) * m_old + add.alpha_mass) / m_new;
+    if (traced) m.m1(i, j) += add.products_mass / area;
   }
   //! Fills cell (i, j) with one material at density rho [kg/m3] and specific internal energy e [J/kg], its
-  //! derivatives zero (GasPhase::products needs a run with products).
+  //! derivatives zero (GasPhase::products needs a run with products); air holds no traced gas.
   BLAST_HD void fill(int i, int j, GasPhase phase, double rho, double e) const {
     s.rho.f(i, j) = rho, s.rho.gx(i, j) = 0.0, s.rho.gy(i, j) = 0.0;
     s.e.f(i, j) = e, s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
-    if (two) {
-      const bool products = phase == GasPhase::products;
-      m.alpha(i, j) = products ? 1.0 : 0.0;
-      m.m1(i, j) = products ? rho : 0.0;
-    }
+    const bool products = phase == GasPhase::products;
+    if (two) m.alpha(i, j) = products ? 1.0 : 0.0;
+    if (traced) m.m1(i, j) = products ? rho : 0.0;
   }
 };
 using GasCells = GasCellsOf<Access::read_write>;

@@ -316,7 +316,7 @@ struct TotalsSum {
 struct TotalsOfCell {
   GasStateReadView s;
   MaterialReadView materials;
-  bool two;
+  bool traced;  // GasMaterials::traced(): m1 is summed
   Field2D<const std::uint8_t> active;
   int nx;
   double area;
@@ -334,7 +334,26 @@ struct TotalsOfCell {
     const double mb = 0.5 * (rho(i, j - 1) + rho(i, j)) * area, mt = 0.5 * (rho(i, j) + rho(i, j + 1)) * area;
     const double px = 0.5 * (ml * ul + mr * ur), py = 0.5 * (mb * vb + mt * vt);
     const double ke = 0.25 * (ml * ul * ul + mr * ur * ur + mb * vb * vb + mt * vt * vt);
-    return {m, px, py, m * s.e.f(i, j), ke, two ? materials.m1(i, j) * area : 0.0};
+    return {m, px, py, m * s.e.f(i, j), ke, traced ? materials.m1(i, j) * area : 0.0};
+  }
+};
+
+//! Distance [m] from (cx, cy) of cell k's centre when the cell is active, holds at least min_fraction of the
+//! traced gas (m1 / rho) at a pressure of at least min_pressure [Pa] and lies within max_radius; else 0.
+struct TracedCellDistance {
+  GasStateReadView s;
+  MaterialReadView m;
+  Field2D<const std::uint8_t> active;
+  GasMaterials mat;
+  GasGrid g;
+  double cx, cy, min_fraction, min_pressure, max_radius;
+  BLAST_HD double operator()(index_t k) const {
+    const int j = static_cast<int>(k / g.nx), i = static_cast<int>(k - static_cast<index_t>(j) * g.nx);
+    if (!active(i, j)) return 0.0;
+    const double dx = g.cell_x(i) - cx, dy = g.cell_y(j) - cy, r = sqrt(dx * dx + dy * dy);
+    const double rho = s.rho.f(i, j);
+    if (!(r <= max_radius) || !(m.m1(i, j) >= min_fraction * rho)) return 0.0;
+    return cell_pressure(mat, m, rho, s.e.f(i, j), i, j) >= min_pressure ? r : 0.0;
   }
 };
 
@@ -371,10 +390,11 @@ struct SampleKernel {
     r.u = bilinear(u, g.x_min, yc, g.dx, g.dy, g.nx, g.ny - 1, x, y);
     r.v = bilinear(v, xc, g.y_min, g.dx, g.dy, g.nx - 1, g.ny, x, y);
     double m1 = 0.0;
-    if (mat.two) {
-      r.alpha = bilinear(m.alpha, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
+    if (mat.traced()) {
       m1 = bilinear(m.m1, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
+      r.traced = m1 / r.rho;
     }
+    if (mat.two) r.alpha = bilinear(m.alpha, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
     r.p = mat.pressure(r.rho, r.e, r.alpha, m1);
     out[k] = r;
   }
@@ -386,8 +406,8 @@ struct SampleKernel {
 struct BoundaryFlowKernel {
   GasStateReadView s;
   Field2D<const double> P, Fx, Fy, Ex, Ey;
-  Field2D<const double> Mx, My;  // products mass fluxes (two-material runs; else unread)
-  bool conservative, two;
+  Field2D<const double> Mx, My;  // traced mass fluxes (runs with products or a tracer; else unread)
+  bool conservative, traced;
   GasGrid g;
   BoundaryConditions bc;
   BLAST_HD TotalsSum operator()(index_t k) const {
@@ -403,7 +423,7 @@ struct BoundaryFlowKernel {
     const double w = sgn * (xside ? s.u.f(fi, fj) : s.v.f(fi, fj));  // outward normal velocity
     const double wt = xside ? 0.5 * (s.v.f(ci, cj) + s.v.f(ci, cj + 1)) : 0.5 * (s.u.f(ci, cj) + s.u.f(ci + 1, cj));
     double mass, internal, products = 0.0;
-    if (two) products = sgn * (xside ? Mx(fi, fj) : My(fi, fj));
+    if (traced) products = sgn * (xside ? Mx(fi, fj) : My(fi, fj));
     if (conservative) {
       mass = sgn * (xside ? Fx(fi, fj) : Fy(fi, fj));
       internal = sgn * (xside ? Ex(fi, fj) : Ey(fi, fj));

@@ -60,6 +60,7 @@ struct GasPoint {
   double velocity_x;       //!< [m/s]
   double velocity_y;       //!< [m/s]
   double products_fraction = 0.0;  //!< volume fraction of detonation products [-] (two-material runs)
+  double tracer = 0.0;             //!< mass fraction of the traced gas [-] (one-gas runs with a tracer)
 };
 
 //! Interpolated state at a sample point (bilinear from the staggered arrays).
@@ -70,6 +71,7 @@ struct GasSample {
   double p;     //!< [Pa]
   double e;     //!< [J/kg]
   double alpha = 0;  //!< volume fraction of detonation products [-]
+  double traced = 0; //!< mass fraction of the traced gas [-]: the products', or the tracer's (0 without either)
 };
 
 //! Integrals over the active cells (per unit depth of the 2-D domain). Momentum and kinetic energy are
@@ -81,7 +83,7 @@ struct GasTotals {
   double momentum_y = 0;       //!< [kg/s]
   double internal_energy = 0;  //!< [J/m]
   double kinetic_energy = 0;   //!< [J/m], of the face velocities with their dual-cell masses
-  double products_mass = 0;    //!< [kg/m] of detonation products (two-material runs)
+  double products_mass = 0;    //!< [kg/m] of the traced gas: detonation products, or the tracer's gas
   double total_energy() const { return internal_energy + kinetic_energy; }
 };
 }  // namespace blastsim::cip
@@ -132,6 +134,7 @@ struct HostGasFields {
   int nx = 0, ny = 0;
   std::vector<double> rho, u, v, p, e;
   std::vector<double> alpha;  //!< products volume fraction (empty in a one-material run)
+  std::vector<double> traced; //!< mass fraction of the traced gas (products or tracer; empty without either)
   std::vector<std::uint8_t> active;  //!< 1 where the cell is advanced, 0 where inactive (immersed solid)
 };
 

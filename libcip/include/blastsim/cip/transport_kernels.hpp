@@ -173,7 +173,10 @@ BLAST_HD inline MixtureFaceValues mixture_face_values(const GasMaterials& mat, c
 //! Mass and internal-energy fluxes [kg/(m2 s), J/(m2 s)] through x-faces (axis 0) or y-faces (axis 1).
 //! Faces beside an inactive cell are closed. In a two-material run, faces with products among the four
 //! cells along their normal take mixture_face_values() and also give the products mass flux, the volume
-//! fraction flux w alpha^ and the open-face velocity (for the alpha equation); elsewhere those are zero.
+//! fraction flux w alpha^ and the open-face velocity (for the alpha equation); elsewhere those are zero. In a
+//! one-gas run with a tracer the traced gas's flux is the mass flux times the upwind cell's traced mass
+//! fraction m1 / rho (first-order upwind: the fraction stays in [0, 1] wherever the mass does not empty a cell
+//! in one step; docs/gas-solver.md "Tracer").
 struct MassFluxKernel {
   int axis;
   GasStateReadView s;
@@ -183,13 +186,13 @@ struct MassFluxKernel {
   Limiter limiter;
   GasMaterials mat;
   MaterialReadView materials;                      // read in two-material runs only
-  Field2D<double> products_flux, alpha_flux, volume_flux;  // written in two-material runs only
+  Field2D<double> products_flux, alpha_flux, volume_flux;  // written in runs with products or a tracer only
   BLAST_HD void operator()(int i, int j) const {
     const int im = axis == 0 ? i - 1 : i, jm = axis == 0 ? j : j - 1;
     if (!active(im, jm) || !active(i, j)) {
       mass_flux(i, j) = 0.0;
       energy_flux(i, j) = 0.0;
-      if (mat.two) products_flux(i, j) = alpha_flux(i, j) = volume_flux(i, j) = 0.0;
+      if (mat.traced()) products_flux(i, j) = alpha_flux(i, j) = volume_flux(i, j) = 0.0;
       return;
     }
     if (mat.two) {
@@ -219,12 +222,17 @@ struct MassFluxKernel {
                                  : 0.25 * (t(i, jm) + t(i, j) + t(i + 1, jm) + t(i + 1, j));
     mass_flux(i, j) = w * swept_value_at(CipValues{s.rho}, axis, im, jm, w, w_t, dt, h, h_t, limiter);
     energy_flux(i, j) = w * swept_value_at(EnergyDensityValues{s.rho, s.e}, axis, im, jm, w, w_t, dt, h, h_t, limiter);
+    if (mat.tracer) {
+      const int ui = w >= 0.0 ? im : i, uj = w >= 0.0 ? jm : j;
+      products_flux(i, j) = mass_flux(i, j) * materials.m1(ui, uj) / s.rho.f(ui, uj);
+    }
   }
 };
 
 //! Cell update of mass and internal energy from the face fluxes; in a two-material run also the products'
 //! partial density (flux form, conserved) and volume fraction: alpha_t + u . grad(alpha) = 0 as
-//! alpha - dt (div(u alpha^) - alpha div(u)) with the same face values (alpha kept in [0, 1] against round-off).
+//! alpha - dt (div(u alpha^) - alpha div(u)) with the same face values (alpha kept in [0, 1] against round-off);
+//! with a tracer the traced gas's partial density (flux form).
 struct CellFluxUpdateKernel {
   GasStateReadView s;
   GasStateView n;
@@ -232,8 +240,8 @@ struct CellFluxUpdateKernel {
   Field2D<const double> Fx, Fy, Ex, Ey;
   Field2D<double> rho_e;
   double dt, dx, dy;
-  bool two;
-  MaterialView materials;                     // updated in place (two-material runs)
+  bool two, traced;                           // GasMaterials::two, GasMaterials::traced()
+  MaterialView materials;                     // updated in place (runs with products or a tracer)
   Field2D<const double> Mx, My, Ax, Ay, Wx, Wy;  // products, alpha and volume fluxes
   BLAST_HD void operator()(int i, int j) const {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
@@ -244,8 +252,9 @@ struct CellFluxUpdateKernel {
     }
     n.rho.f(i, j) = rho - dt * ((Fx(i + 1, j) - Fx(i, j)) / dx + (Fy(i, j + 1) - Fy(i, j)) / dy);
     rho_e(i, j) = rho * e - dt * ((Ex(i + 1, j) - Ex(i, j)) / dx + (Ey(i, j + 1) - Ey(i, j)) / dy);
-    if (!two) return;
+    if (!traced) return;
     materials.m1(i, j) -= dt * ((Mx(i + 1, j) - Mx(i, j)) / dx + (My(i, j + 1) - My(i, j)) / dy);
+    if (!two) return;
     const double a = materials.alpha(i, j);
     const double div_a = (Ax(i + 1, j) - Ax(i, j)) / dx + (Ay(i, j + 1) - Ay(i, j)) / dy;
     const double div_u = (Wx(i + 1, j) - Wx(i, j)) / dx + (Wy(i, j + 1) - Wy(i, j)) / dy;

@@ -55,6 +55,8 @@ void check_mesh_holes(const MeshSpec& spec, const std::vector<std::string>& labe
 //! ends inside or on its boundary), is at least half an element long, and the mesh is one Gmsh can make lines
 //! in (not rectangle_with_hole, not the ring mesher).
 void check_joint_lines(const MeshSpec& spec);
+//! The same for one segment named `label` that a built shape is to follow (a pre-cut crack).
+void check_mesh_segment(const MeshSpec& spec, const Segment& segment, const std::string& label);
 
 //! The mesh of `spec`, jittered when spec.jitter > 0 (the vertices on joint lines stay, so the lines stay
 //! straight). Throws InputError when Gmsh or the file fails, or when the jittered mesh is invalid.
@@ -85,6 +87,15 @@ struct ProbeSpec {
   double until = 1e308;
 };
 
+//! A crack that is there from the start: the joints along a straight segment [m] of the mesh are broken before
+//! the first step (RockSolver::break_joints()); `initial_aperture` [m] is the hydraulic opening of a crack whose
+//! faces touch in the mesh (used by the crack gas).
+struct PreCutCrack {
+  std::string label;
+  Segment segment;
+  double initial_aperture = 0;
+};
+
 //! Everything a rock model is made of.
 struct RockModelSpec {
   MeshSpec mesh;
@@ -95,6 +106,9 @@ struct RockModelSpec {
   std::vector<PressureLoad> pressures;
   std::vector<ViscousBoundary> viscous_boundaries;
   std::vector<ProbeSpec> probes;
+  //! Cracks broken before the first step; a built shape follows their segments (as joint lines), a mesh file
+  //! must have edges along them.
+  std::vector<PreCutCrack> cracks;
 };
 
 //! The mesh, its FDEM topology and the solver, with the nodes of each velocity load.
@@ -103,9 +117,10 @@ struct RockModel {
   FdemTopology topology;
   std::unique_ptr<RockSolver> solver;
   std::vector<std::vector<int>> velocity_nodes;
+  std::vector<std::vector<int>> crack_joints;  //!< the joints of each pre-cut crack (spec.cracks' order)
 };
 //! Builds the model. Throws InputError: a velocity load's box without nodes, a boundary group the mesh lacks
-//! (listing those it has), a probe outside the rock.
+//! (listing those it has), a probe outside the rock, a pre-cut crack with no joint along its segment.
 RockModel build_rock_model(const RockModelSpec& spec);
 
 //! Mean length [m] of the joints of a topology (0 without joints).

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -52,7 +53,8 @@ class RockSolver {
   //! (the travel so far plus, over the substeps after the first, the last speed read). Each node update keeps
   //! every node's largest speed; the caller then reduces peak_speed_kernel() over node_count() nodes (alone,
   //! or fused with its own reduction) and passes the maximum to finish_motion() before the next advance().
-  void advance(double dt, int substeps);
+  //! `before_step(k)`, when given, runs before substep k (a coupling that updates loads within the steps).
+  void advance(double dt, int substeps, const std::function<void(int)>& before_step = {});
   //! Ends an advance(): InstabilityError if `v_max` [m/s] flags a non-finite speed, else the broad phase's
   //! travel grows by v_max times the time advanced; clears the speed peaks (a kernel, no wait).
   void finish_motion(double v_max);
@@ -76,6 +78,9 @@ class RockSolver {
   void set_viscous_boundary(const std::vector<int>& slots);
   //! Sets every node's velocity [m/s] from a host array of 2 per node.
   void set_velocities(const std::vector<double>& vxy);
+  //! Sets every node's position [m] from a host array of 2 per node (the reference mesh stays): moving whole
+  //! pieces rigidly, e.g. the two sides of a pre-cut crack apart, leaves their triangles unstrained.
+  void set_positions(const std::vector<double>& xy);
   //! Pressure [Pa] on the given edge slots (the rest keep theirs); pushes into the rock.
   void set_edge_pressure(const std::vector<int>& slots, double pressure);
   //! Joints (indices) whose two ends lie within `tolerance` [m] of the segment (xa, ya)-(xb, yb) in the
@@ -111,6 +116,10 @@ class RockSolver {
   //! Sum over nodes of the contact force magnitude [N/m] of the last step (0: nothing touches).
   double contact_force_norm() const;
   double time() const { return time_; }
+  //! [s] the last step's dt (0 before the first). The work ledgers pair a step's forces with half of the last
+  //! step's displacement and half of their own (leapfrog), so the positions x - v last_step() / 2 are the ones
+  //! whose changes the ledgers' works are paid along.
+  double last_step() const { return dt_prev_; }
   long steps() const { return steps_; }
   int triangle_count() const { return triangles_; }
   int node_count() const { return 3 * triangles_; }

@@ -1,8 +1,8 @@
 //! \file blasthole_monitor.hpp
 //! \brief What a blast engineer watches around one blasthole in a coupled run: the gas pressure at the hole
 //! wall against the rock's radial stress there (the paper's Fig. 4b; docs/validation.md S1), the first crack,
-//! the gas reaching the rock's outer free surface with its speed (the paper's 3.14 ms and 214 m/s), and, with
-//! gas in the cracks, the hole's gas front in the crack network and its arrival at the outer surface.
+//! the gas reaching the rock's outer free surface with its speed (the paper's 3.14 ms and 214 m/s), and the
+//! blast gas (the traced gas) with its front through the grid and the cracks and its arrival at the surface.
 #pragma once
 
 #include "blastsim/core/checkpoint_traits.hpp"
@@ -35,11 +35,13 @@ struct BlastholeSample {
   double outer_pressure_max = 0;   //!< largest gas pressure on the circle just outside the outer surface
   double outer_speed_max = 0;      //!< largest outward speed among the outflow points there
   double outer_flux_speed = 0;     //!< mass-flux-weighted mean outward speed there
-  //! With crack gas: the largest crack-gas pressure at a crack mouth on the mesh outline beyond the middle
-  //! between the hole and the outer surface [Pa], and the hole's gas front in the cracks [m] (the farthest
-  //! crack whose own gas exceeds hole_gas_pressure()); 0 without.
-  double outer_crack_pressure = 0;
-  double crack_gas_front = 0;
+  //! The blast gas (the traced gas: the hole's gas in a one-gas run with a tracer, or the detonation products;
+  //! docs/analysis.md "Blast gas"): where it is at least kBlastFraction of the gas at a pressure of at least
+  //! kBlastPressure x ambient (not a near-vacuum).
+  double blast_front = 0;          //!< [m] its farthest reach inside the outer radius, grid and cracks
+  double blast_front_crack = 0;    //!< [m] the same in the cracks' own gas alone
+  double outer_blast_fraction = 0; //!< largest blast-gas fraction on the circle outside and at crack mouths there
+  double outer_blast_speed = 0;    //!< mass-flux-weighted mean outward speed of the blast gas on that circle
 };
 
 //! The events, each the time of the first sample where it is seen (-1: not yet).
@@ -50,8 +52,10 @@ struct BlastholeEvents {
   double ejection_pressure = 0;   //!< [Pa] outer_pressure_max at that sample
   double jet_speed = 0;           //!< [m/s] largest outer_flux_speed from the ejection on
   double jet_time = -1;           //!< [s] when it was reached
-  double crack_arrival = -1;      //!< [s] the hole's gas at a crack mouth on the outer surface (crack gas)
-  double crack_arrival_pressure = 0;  //!< [Pa] the crack mouth's pressure then
+  double blast_arrival = -1;      //!< [s] blast gas at the outer surface (on the circle, or at a crack mouth)
+  double blast_arrival_crack = 0; //!< 1 when it first arrived at a crack mouth, 0 on the circle
+  double blast_speed = 0;         //!< [m/s] largest outer_blast_speed from the arrival on
+  double blast_speed_time = -1;   //!< [s] when it was reached
 };
 }  // namespace blastsim::ibm
 BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::BlastholeEvents)
@@ -69,10 +73,9 @@ class BlastholeMonitor {
   //! Takes one sample at the solvers' current state and updates the events; `crack`: the coupling's crack gas,
   //! when it has one.
   BlastholeSample sample(const cip::GasSolver& gas, const fdem::RockSolver& rock, const CrackGasCoupling* crack = nullptr);
-  //! The pressure [Pa] above which crack gas counts as the hole's: a quarter of the gas pressure at the hole
-  //! wall `wall_pressure` [Pa], and at least twice the ambient (the outside air that dry cracks draw in through
-  //! the free face stays below it).
-  double hole_gas_pressure(double wall_pressure) const { return std::max(0.25 * wall_pressure, 2 * p_ambient_); }
+  //! Gas counts as blast gas where at least this mass fraction of it is the traced gas, at a pressure of at
+  //! least kBlastPressure x the ambient.
+  static constexpr double kBlastFraction = 0.5, kBlastPressure = 0.5;
 
   const BlastholeEvents& events() const { return events_; }
   void restore(const BlastholeEvents& e) { events_ = e; }  //!< a restart: the events of the checkpoint

@@ -57,6 +57,9 @@ struct CouplingContext {
   double ambient_pressure;  //!< [Pa] of that state
   FaceOwners<Access::read_write> owners;
   bool first;  //!< this rock_to_gas() sets the run's initial masks: nothing moves, nothing is counted
+  //! [m] how far from a triangle with a crack face the face points it owns may lie (the gaps of the cracks
+  //! that keep their own gas: CouplingProcess::owner_margin()); 0 when every owned point lies in its triangle
+  double owner_margin;
 };
 
 //! The interface of a process: a hook per stage of GasRockCoupler::step(), each a no-op unless overridden.
@@ -80,6 +83,10 @@ class CouplingProcess {
 
   // --- gas -> rock (GasRockCoupler::gas_to_rock()): the loads for the rock's next steps ---
   virtual void load_rock(CouplingContext& /*ctx*/) {}
+  //! True when the process updates its loads between the rock's substeps (before_rock_step()).
+  virtual bool updates_rock_steps() const { return false; }
+  //! Before rock substep k >= 1 of a coupled step (load_rock() set the loads of substep 0).
+  virtual void before_rock_step(CouplingContext& /*ctx*/, int /*k*/) {}
 
   // --- events ---
   //! True when the process needs a rock_to_gas() at gas time t [s] before the next dt is chosen (a charge
@@ -87,6 +94,10 @@ class CouplingProcess {
   virtual bool due(double /*t*/) const { return false; }
   //! The next time after t [s] that a step must land on (infinity: none).
   virtual double next_event(double /*t*/) const { return std::numeric_limits<double>::infinity(); }
+
+  //! [m] how far from a triangle with a crack face the face points the process gives that triangle in cover()
+  //! may lie (0: none outside their triangle).
+  virtual double owner_margin(const cip::GasGrid& /*grid*/) const { return 0.0; }
 
   // --- what it reports and keeps ---
   virtual void add_diagnostics(const CouplingContext& /*ctx*/, CouplingDiagnostics& /*d*/) const {}

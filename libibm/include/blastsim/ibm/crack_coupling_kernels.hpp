@@ -13,6 +13,7 @@
 #include "blastsim/fdem/rock_fields.hpp"
 #include "blastsim/ibm/coupling_kernels.hpp"
 #include "blastsim/ibm/crack_gas_kernels.hpp"
+#include "blastsim/ibm/immersed_boundary_kernels.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -21,111 +22,268 @@ namespace blastsim::ibm {
 
 //! The coupling's own arrays beside the network's, as field lists X(element type, name, comment) (storage in
 //! crack_gas_coupling.cpp): per junction its place on the mesh outline (fixed) and its mouth's cell; per
-//! segment what it hands to the grid in this step; per deposit record (the mouths, then the segments) the sort
-//! by cell that makes the deposits' sums independent of the thread order.
+//! segment its initial aperture (fixed) and the gas it hands to the grid; per deposit record (the mouths, then
+//! the segments) the sort by cell that makes the deposits' sums independent of the thread order.
 #define BLASTSIM_CRACK_JUNCTION_PLACES(X) X(std::uint8_t, outline, "1: the junction's vertex lies on the mesh outline")
-#define BLASTSIM_CRACK_MOUTH_CELLS(X) X(int, cell, "the cell i + nx j a junction's mouth opens into, or -1")
+#define BLASTSIM_CRACK_SEGMENT_PARAMS(X) X(double, initial_aperture, "opening [m] of a pre-cut crack whose faces touch")
+//! A mouth draws from (and gives to) the grid cells at kMouthSamples points across its opening, so that an opening
+//! wider than a cell is not fed through one cell.
+inline constexpr int kMouthSamples = 3;
+#define BLASTSIM_CRACK_MOUTH_CELLS(X)                                                                        \
+  X(int, cell, "per junction kMouthSamples cells i + nx j its mouth opens into (-1: none), junction-major")   \
+  X(int, sharers, "how many mouth samples (of all junctions) open into that cell")                            \
+  X(ChannelConserved, share, "the sample's share of its junction's deposit, per quantity (q unused)")
 #define BLASTSIM_CRACK_HANDOVERS(X)                                                                  \
-  X(int, cell, "the cell i + nx j a segment hands its gas to in this step, or -1")                  \
+  X(std::uint8_t, pending, "1: the segment handed its gas over; it goes to a cell in after_gas")  \
   X(ChannelConserved, gas, "the gas it hands over")                                                  \
-  X(double, load_factor, "crack_width()'s dw_dopening: scales the gas's pressure on the faces")
+  X(int, cell, "the cell i + nx j the handed gas goes to in this step, or -1")
+//! Where a crack's faces stood when its cushion last set their load (CrackCushionKernel): the four nodes at the
+//! ledger positions x - v dt / 2 [m], and each face's outward normal scaled by its length [m] at the positions x
+//! the rock's step computes the load from.
+struct CushionFaces {
+  double ax0, ay0, ax1, ay1, bx0, by0, bx1, by1;
+  double nax, nay, nbx, nby;
+};
+}  // namespace blastsim::ibm
+BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::CushionFaces)
+namespace blastsim::ibm {
+//! Per segment, the gas as a cushion between its faces over the rock steps of one coupled step (set by
+//! load_rock(), updated before every rock substep, paid for in the next cover()): the isentrope it follows, the
+//! load its faces carry and where they stood, and the work of its loads so far.
+#define BLASTSIM_CRACK_CUSHION(X)                                                                   \
+  X(std::uint8_t, on, "1: the faces are loaded by this cushion since the last cover()")            \
+  X(double, p0, "pressure [Pa] at the start of the rock steps")                                    \
+  X(double, V0, "volume [m2 per m] then")                                                           \
+  X(double, exponent, "isentropic exponent 1 + p0 V0 / U0 [-]")                                    \
+  X(double, applied, "the pressure [Pa] the faces carry now (the gas's times dw / do)")           \
+  X(CushionFaces, faces, "where the faces stood when that load was set")                            \
+  X(double, work, "work [J/m] of the loads of the substeps before the last")
+//! Cumulative ledgers (checkpointed): per deposit record what it gave the grid's cells, per segment the work its
+//! gas did on the crack's walls (docs/coupling.md "Energy budget with crack gas").
+#define BLASTSIM_CRACK_EXCHANGE_LEDGER(X) X(ChannelConserved, to_grid, "per record: gas given to the cells since the start")
+#define BLASTSIM_CRACK_WALL_LEDGER(X) X(double, wall_work, "per segment: work [J/m] of its gas on the walls since the start")
 #define BLASTSIM_CRACK_DEPOSIT_ORDER(X)                            \
   X(int, key, "cell key of each record (INT_MAX: none), sorted")   \
   X(int, record, "the record at each sorted position")
 
 BLASTSIM_CONST_GROUP(CrackJunctionPlaces, BLASTSIM_CRACK_JUNCTION_PLACES)
+BLASTSIM_CONST_GROUP(CrackSegmentParams, BLASTSIM_CRACK_SEGMENT_PARAMS)
 BLASTSIM_VIEW_GROUP(CrackMouthCells, BLASTSIM_CRACK_MOUTH_CELLS)
 BLASTSIM_VIEW_GROUP(CrackHandovers, BLASTSIM_CRACK_HANDOVERS)
+BLASTSIM_VIEW_GROUP(CrackCushion, BLASTSIM_CRACK_CUSHION)
 BLASTSIM_VIEW_GROUP(CrackDepositOrder, BLASTSIM_CRACK_DEPOSIT_ORDER)
+BLASTSIM_VIEW_GROUP(CrackExchangeLedger, BLASTSIM_CRACK_EXCHANGE_LEDGER)
+BLASTSIM_VIEW_GROUP(CrackWallLedger, BLASTSIM_CRACK_WALL_LEDGER)
 
-//! Aperture of a crack from the mean normal opening o of its faces [m] and the residual aperture w_r [m]:
-//! w = w_r + o when open; closed (o < 0: the faces pressed together), w = w_r exp(o / w_r), which joins
-//! smoothly (same value and slope at o = 0) and stays positive. dw_dopening scales the gas's pressure on the
-//! faces, so that their work p L dw_dopening do is the gas's p dV exactly: a closed crack's gas loads its
-//! faces less the more they are pressed together.
+//! Hydraulic aperture of a crack from the normal opening o of its faces [m] and the residual aperture w_r [m]:
+//! w = w_r + o while open (o >= 0). Pressed together (o < 0), the asperities that keep a closed crack's void
+//! close hyperbolically, as a rock joint does under normal stress (Bandis, Lumsden & Barton 1983, Int. J. Rock
+//! Mech. Min. Sci. 20:249: bounded closure), towards w_r / 2: w = w_r / 2 + (w_r / 2) / (1 - 2 o / w_r), which
+//! joins w_r + o with the same value and slope at o = 0. So a crack squeezed shut compresses its gas by at most
+//! the ratio of its volume to that floor (docs/coupling.md "Closing cracks"). dw_dopening scales the gas's
+//! pressure on the faces, so that their work p L dw_dopening do is the gas's p dV exactly: a closed crack's gas
+//! loads its faces less the more they are pressed together.
 struct CrackWidth {
   double w, dw_dopening;
 };
 BLAST_HD inline CrackWidth crack_width(double opening, double residual) {
   if (opening >= 0) return {residual + opening, 1.0};
-  const double f = exp(opening / residual);
-  return {residual * f, f};
+  const double f = 1.0 / (1.0 - 2.0 * opening / residual);
+  return {0.5 * residual * (1.0 + f), f * f};
 }
 
-//! Work [J/m] a segment's gas (conserved c, pressure p [Pa]) does on its walls when its volume goes from V0 to V1
-//! [m2 per m]: p (V1 - V0), unless that would take more than half of its internal energy U (a fast opening of a
-//! nearly empty crack), where the explicit product overshoots and would leave a negative internal energy; then
-//! the isentropic expansion at the gas's effective Gruneisen coefficient G = p V0 / U, U (1 - (V0 / V1)^G),
-//! which keeps U positive (exact for an ideal gas).
-BLAST_HD inline double expansion_work(const ChannelConserved& c, double p, double V0, double V1) {
-  const double W = p * (V1 - V0), U = c.E - 0.5 * c.q * c.q / c.m;
+//! Mean pressure [Pa] of a gas (pressure p [Pa], internal energy U [J/m] in volume V0 [m2 per m]) over an
+//! isentropic change of its volume to V1: its work U (1 - (V0 / V1)^G) over V1 - V0, at the gas's effective
+//! Gruneisen coefficient G = p V0 / U (exact for an ideal gas; JWL products and mixtures take the local G).
+//! Below p when it expands, above when it is compressed; p itself for V1 = V0.
+BLAST_HD inline double isentropic_mean_pressure(double p, double U, double V0, double V1) {
+  if (!(p > 0.0) || !(U > 0.0) || !(V0 > 0.0) || !(V1 > 0.0) || fabs(V1 / V0 - 1.0) < 1e-9) return p;
+  return U * (1.0 - pow(V0 / V1, p * V0 / U)) / (V1 - V0);
+}
+
+//! The work [J/m] a segment's gas (conserved c, pressure p [Pa] in volume V0 [m2 per m]) pays for its walls'
+//! motion to V1, when its loads did the work W [J/m] on the rock: W, unless W would take more than half of its
+//! internal energy U (a segment whose faces flew apart much faster than its loads followed); then the
+//! isentropic expansion's work, which keeps U positive.
+BLAST_HD inline double expansion_work(const ChannelConserved& c, double W, double p, double V0, double V1) {
+  const double U = c.E - 0.5 * c.q * c.q / c.m;
   if (!(W > 0.5 * U) || !(U > 0.0)) return W;
-  return U * (1.0 - pow(V0 / V1, p * V0 / U));
+  return isentropic_mean_pressure(p, U, V0, V1) * (V1 - V0);
 }
 
-//! Every joint's channel from the rock (one thread per joint = segment): length L (mean of its two faces),
-//! aperture w from the mean normal opening of its two ends (crack_width()), volume L w. A joint that just broke
-//! becomes a gas segment holding nothing (a vacuum: its gas can only come from its neighbours, so the total is
-//! kept exactly); a gas segment whose volume changes does the work p dV on its walls (E -= p dV: the rock's
-//! edge pressures do the same work on the rock). Hand-over: when a face of the crack meets the grid gas (the
-//! cell it faces is active, so the grid's gas loads it and is pushed by it), the segment gives its gas to that
-//! cell (handover[], applied with the mouths' deposits) and the grid carries it from then on; once neither
-//! face meets an active cell, the segment takes its own gas again, starting empty. So the two gases never
-//! share a face, and every face's work is paid by the gas that loads it.
+//! The faces of joint s in the rock's current state: their nodes' positions (a0 -> a1 is face A, b0 -> b1 face B;
+//! a0 faces b1, a1 faces b0), the lengths, and the crack's mean opening [m]: the area between the faces (the
+//! quadrilateral a0 a1 b0 b1, positive when they stand apart) over their mean length. For faces that still face
+//! each other this is the mean of the normal openings of the two ends; for faces that slid or turned away from
+//! each other (a fragment thrown off) it grows with their distance, where the ends' normal openings may not.
+//! `lag` [s] > 0 takes the positions x - lag v instead: with half the rock's last step (RockSolver::last_step()),
+//! the positions along which the rock's work ledger pays the loads.
+struct JointFaces {
+  fdem::Vec2 a0, a1, b0, b1;
+  double la, lb, opening;
+};
+BLAST_HD inline JointFaces joint_faces(const fdem::RockView& rock, int s, double lag = 0.0) {
+  const fdem::JointNodes jn = rock.joint.nodes[s];
+  const fdem::NodeMotion<Access::read>& x = rock.nodes;
+  auto at = [&](int n) { return fdem::Vec2{x.x[n] - lag * x.vx[n], x.y[n] - lag * x.vy[n]}; };
+  JointFaces f{at(jn.a0), at(jn.a1), at(jn.b0), at(jn.b1), 0.0, 0.0, 0.0};
+  f.la = sqrt((f.a1.x - f.a0.x) * (f.a1.x - f.a0.x) + (f.a1.y - f.a0.y) * (f.a1.y - f.a0.y));
+  f.lb = sqrt((f.b1.x - f.b0.x) * (f.b1.x - f.b0.x) + (f.b1.y - f.b0.y) * (f.b1.y - f.b0.y));
+  // Shoelace over a0 -> a1 -> b0 -> b1: the gap lies to the right of a0 -> a1, so an open crack turns clockwise.
+  const double twice = (f.a0.x * f.a1.y - f.a1.x * f.a0.y) + (f.a1.x * f.b0.y - f.b0.x * f.a1.y) +
+                       (f.b0.x * f.b1.y - f.b1.x * f.b0.y) + (f.b1.x * f.a0.y - f.a0.x * f.b1.y);
+  f.opening = -twice / (f.la + f.lb);
+  return f;
+}
+
+//! The area [m2 per m] the two faces swept away from each other since they stood at `was`, as the rock's work
+//! ledger measures a uniform unit pressure's work on them: -1/2 n . (the move of each of the face's two nodes),
+//! n the face's outward normal times its length where the load was computed.
+BLAST_HD inline double swept_area(const CushionFaces& was, const JointFaces& now) {
+  return -0.5 * (was.nax * (now.a0.x - was.ax0 + now.a1.x - was.ax1) + was.nay * (now.a0.y - was.ay0 + now.a1.y - was.ay1) +
+                 was.nbx * (now.b0.x - was.bx0 + now.b1.x - was.bx1) + was.nby * (now.b0.y - was.by0 + now.b1.y - was.by1));
+}
+
+//! The crack widths [m] at which a segment's gas goes to the grid and back (docs/coupling.md "Hand-over"): its
+//! faces at least `handover` apart (CrackGasOptions::handover_width cells), back below half of that.
+struct HandoverGaps {
+  double handover, back;
+};
+
+//! Every joint's channel from the rock (one thread per joint = segment), in the immersed boundary's cover stage,
+//! before the cells' masks are made: length L (mean of its two faces), aperture w from their mean opening plus
+//! its initial aperture (crack_width()), volume L w. A joint that just broke becomes a gas segment holding
+//! nothing (a crack born inside the rock is empty: its gas can only come from its neighbours, so the total is
+//! kept exactly), or a grid segment if it is already wide; a gas segment whose volume changes does the work p dV on its walls
+//! (E -= p dV: the rock's edge pressures do the same work on the rock). Hand-over: a gas segment whose faces
+//! are at least gaps.handover apart gives its gas to the grid (held in `handovers` until after_gas puts it in
+//! a cell of the crack) and the grid carries the crack from then on; a grid segment whose faces come back
+//! within gaps.back takes its own gas again, starting empty (its cells are covered, and their gas goes to
+//! their neighbours). So the two gases never share a crack.
 struct CrackGeometryKernel {
   fdem::RockView rock;
   cip::GasMaterials mat;
-  cip::GasGrid g;
-  Field2D<const std::uint8_t> active;
+  CrackSegmentParams params;
   CrackGeometry<Access::read_write> geo;
   CrackSegments<Access::read_write> seg;
   CrackHandovers<Access::read_write> handovers;
+  CrackCushion<Access::read_write> cushion;
+  CrackWallLedger<Access::read_write> ledger;
   double residual_aperture;
+  HandoverGaps gaps;
+  double lag;  //!< [s] half the rock's last step (joint_faces())
   BLAST_HD void operator()(index_t ji) const {
     const int s = static_cast<int>(ji);
-    handovers.cell[s] = -1;
     if (!rock.joints.broken[s]) {
       seg.kind[s] = kSegmentNone;
       return;
     }
-    const fdem::JointNodes jn = rock.joint.nodes[s];
-    const fdem::NodeMotion<Access::read>& x = rock.nodes;
-    const fdem::Vec2 a0 = x.position(jn.a0), a1 = x.position(jn.a1), b0 = x.position(jn.b0), b1 = x.position(jn.b1);
-    const double la = sqrt((a1.x - a0.x) * (a1.x - a0.x) + (a1.y - a0.y) * (a1.y - a0.y));
-    const double lb = sqrt((b1.x - b0.x) * (b1.x - b0.x) + (b1.y - b0.y) * (b1.y - b0.y));
-    const fdem::Vec2 nrm = fdem::edge_outward_normal(a0, a1);  // from face A towards face B, length la
-    const double open0 = ((b1.x - a0.x) * nrm.x + (b1.y - a0.y) * nrm.y) / la;
-    const double open1 = ((b0.x - a1.x) * nrm.x + (b0.y - a1.y) * nrm.y) / la;
-    const CrackWidth cw = crack_width(0.5 * (open0 + open1), residual_aperture);
-    const double L = 0.5 * (la + lb), w = cw.w, V = L * w;
-    geo.length[s] = L, geo.aperture[s] = w, handovers.load_factor[s] = cw.dw_dopening;
-    int ci = -1, cj = -1, fi = 0, fj = 0;
-    if (facing_cell(g, a0, a1, fi, fj) && active(fi, fj)) ci = fi, cj = fj;
-    else if (facing_cell(g, b0, b1, fi, fj) && active(fi, fj)) ci = fi, cj = fj;
-    const bool meets_grid = ci >= 0;
+    const JointFaces f = joint_faces(rock, s, lag);
+    const CrackWidth cw = crack_width(f.opening + params.initial_aperture[s], residual_aperture);
+    const double L = 0.5 * (f.la + f.lb), w = cw.w, V = L * w;
+    geo.length[s] = L, geo.aperture[s] = w;
     const std::uint8_t kind = seg.kind[s];
-    if (kind == kSegmentNone || (kind == kSegmentGrid && !meets_grid)) {
-      seg.kind[s] = meets_grid ? kSegmentGrid : kSegmentGas, seg.cons[s] = {0, 0, 0, 0, 0}, seg.volume[s] = V;
+    const bool loaded = cushion.on[s] != 0;
+    cushion.on[s] = 0;
+    const bool wide = f.opening >= (kind == kSegmentGrid ? gaps.back : gaps.handover);
+    if (kind == kSegmentNone || (kind == kSegmentGrid && !wide)) {
+      seg.kind[s] = wide ? kSegmentGrid : kSegmentGas, seg.cons[s] = {0, 0, 0, 0, 0}, seg.volume[s] = V;
       return;
     }
     if (kind != kSegmentGas) return;
     ChannelConserved c = seg.cons[s];
     const double V_old = seg.volume[s];
     const ChannelPrimitive P = segment_state(mat, c, V_old);
-    if (!is_vacuum(P)) c.E -= expansion_work(c, P.p, V_old, V);
+    if (loaded && !is_vacuum(P)) {  // the work of the cushion's loads since load_rock(): the last substep's too
+      const double W = expansion_work(c, cushion.work[s] + cushion.applied[s] * swept_area(cushion.faces[s], f), P.p,
+                                      V_old, V);
+      c.E -= W;
+      ledger.wall_work[s] += W;
+    }
     seg.volume[s] = V;
-    if (meets_grid) {
-      handovers.gas[s] = c, handovers.cell[s] = cj * g.nx + ci;
+    if (wide) {
+      ChannelConserved h = handovers.pending[s] ? handovers.gas[s] : ChannelConserved{0, 0, 0, 0, 0};
+      h = {h.m + c.m, h.q + c.q, h.E + c.E, h.m1 + c.m1, h.am + c.am};
+      handovers.gas[s] = h, handovers.pending[s] = 1;
       seg.kind[s] = kSegmentGrid, c = {0, 0, 0, 0, 0};
     }
     seg.cons[s] = c;
   }
 };
 
+//! Squared distance [m2] from (px, py) to the segment p0 - p1.
+BLAST_HD inline double segment_distance2(const fdem::Vec2& p0, const fdem::Vec2& p1, double px, double py) {
+  const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
+  double t = len2 > 0.0 ? ((px - p0.x) * ex + (py - p0.y) * ey) / len2 : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  const double dx = px - p0.x - t * ex, dy = py - p0.y - t * ey;
+  return dx * dx + dy * dy;
+}
+
+//! The gap of every crack that holds its own gas is solid to the grid (one thread per joint): the face points
+//! (x-faces for u, y-faces for v) between its two faces take, as owner, the triangle of the nearer face, so a
+//! crack narrower than the hand-over width opens no grid cell: the grid cannot carry its flow (a face row
+//! along it would carry a cell's width of gas through a micron-wide crack, and a crack a few tenths of a cell
+//! wide opens isolated cells), and its gas is the channel's alone. Order-independent (atomic maximum), as the
+//! triangles' own cover.
+struct CrackGapCoverKernel {
+  fdem::RockView rock;
+  cip::GasGrid g;
+  CrackSegments<Access::read> seg;
+  FaceOwners<Access::read_write> owners;
+  BLAST_HD void operator()(index_t ji) const {
+    const int s = static_cast<int>(ji);
+    if (seg.kind[s] != kSegmentGas) return;
+    const JointFaces f = joint_faces(rock, s);
+    if (!(f.opening > 0.0)) return;
+    const fdem::JointNodes jn = rock.joint.nodes[s];
+    const int tri_a = jn.a0 / 3, tri_b = jn.b0 / 3;
+    // The gap as two triangles: (a0, a1, b0) and (a0, b0, b1).
+    const double tx[2][3] = {{f.a0.x, f.a1.x, f.b0.x}, {f.a0.x, f.b0.x, f.b1.x}};
+    const double ty[2][3] = {{f.a0.y, f.a1.y, f.b0.y}, {f.a0.y, f.b0.y, f.b1.y}};
+    const double qx[4] = {f.a0.x, f.a1.x, f.b0.x, f.b1.x}, qy[4] = {f.a0.y, f.a1.y, f.b0.y, f.b1.y};
+    for (int face = 0; face < 2; ++face) {
+      const FaceBox b = triangle_face_box(g, qx, qy, face);
+      const FaceBox b2 = triangle_face_box(g, qx + 1, qy + 1, face);  // the quad's box: both triangles' union
+      const int i0 = imin(b.i0, b2.i0), i1 = imax(b.i1, b2.i1), j0 = imin(b.j0, b2.j0), j1 = imax(b.j1, b2.j1);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const double px = g.x_min + (i + b.ox) * g.dx, py = g.y_min + (j + b.oy) * g.dy;
+          double w[3];
+          const bool in = (barycentric(tx[0], ty[0], px, py, w) && inside(w)) ||
+                          (barycentric(tx[1], ty[1], px, py, w) && inside(w));
+          if (!in) continue;
+          const bool nearer_a = segment_distance2(f.a0, f.a1, px, py) <= segment_distance2(f.b0, f.b1, px, py);
+          atomic_max(&(face == 0 ? owners.u : owners.v)(i, j), nearer_a ? tri_a : tri_b);
+        }
+    }
+  }
+};
+
+//! The active cell whose centre is nearest to (x, y) in the 3 x 3 block of cells around it, in (fi, fj);
+//! false when none is active (or the point lies off the grid by more than a cell).
+BLAST_HD inline bool nearest_active_cell(const cip::GasGrid& g, const Field2D<const std::uint8_t>& active, double x,
+                                         double y, int& fi, int& fj) {
+  const int ci = static_cast<int>(floor((x - g.x_min) / g.dx)), cj = static_cast<int>(floor((y - g.y_min) / g.dy));
+  double best = 1e300;
+  fi = fj = -1;
+  for (int j = imax(0, cj - 1); j <= imin(g.ny - 1, cj + 1); ++j)
+    for (int i = imax(0, ci - 1); i <= imin(g.nx - 1, ci + 1); ++i) {
+      if (!active(i, j)) continue;
+      const double dx = g.cell_x(i) - x, dy = g.cell_y(j) - y, d = dx * dx + dy * dy;
+      if (d < best) best = d, fi = i, fj = j;
+    }
+  return fi >= 0;
+}
+
 //! Which junctions open into the grid gas, and its state there (one thread per junction). A junction is a
-//! mouth when the cell holding it (the midpoint of its two faces' nodes at the first gas segment's end) is
-//! active, or, for a vertex on the mesh outline (the blasthole wall, the free face), when an active cell's
-//! centre lies in the 3 x 3 block around it (the nearest). The mouth's reservoir is that cell's gas at rest.
+//! mouth where the crack network truly meets open gas: a vertex on the mesh outline (the blasthole wall, the
+//! free face, the rim of a fragment) or a vertex where a crack that the grid carries (kSegmentGrid) ends. An
+//! active cell over an interior vertex of narrow cracks is no mouth: it is a cut cell whose open part lies on
+//! the far side of rock. The mouth's opening is the first gas segment's end there, from one face's node to the
+//! other's; at kMouthSamples points across it, half a cell out of the crack, the nearest active cell (3 x 3
+//! block) is one of the mouth's cells, and its reservoir is their gas, mixed, at rest (their mean density,
+//! their mass-weighted energy and fractions). A mouth without an active cell is closed.
 struct CrackMouthKernel {
   fdem::RockView rock;
   cip::GasMaterials mat;
@@ -139,57 +297,178 @@ struct CrackMouthKernel {
   CrackMouthCells<Access::read_write> mouth_cells;
   BLAST_HD void operator()(index_t ji) const {
     const int J = static_cast<int>(ji);
-    mouths.open[J] = 0, mouth_cells.cell[J] = -1;
+    mouths.open[J] = 0;
+    for (int k = 0; k < kMouthSamples; ++k) mouth_cells.cell[kMouthSamples * J + k] = -1;
     int end = -1;
-    for (int k = graph.junction_offset[J]; k < graph.junction_offset[J + 1] && end < 0; ++k)
-      if (seg.kind[graph.junction_entry[k] / 2] == kSegmentGas) end = graph.junction_entry[k];
-    if (end < 0) return;
+    bool open = places.outline[J] != 0;
+    for (int k = graph.junction_offset[J]; k < graph.junction_offset[J + 1]; ++k) {
+      const std::uint8_t kind = seg.kind[graph.junction_entry[k] / 2];
+      if (kind == kSegmentGas && end < 0) end = graph.junction_entry[k];
+      open = open || kind == kSegmentGrid;
+    }
+    if (end < 0 || !open) return;
     const fdem::JointNodes jn = rock.joint.nodes[end / 2];
     const int na = end % 2 == 0 ? jn.a0 : jn.a1, nb = end % 2 == 0 ? jn.b1 : jn.b0;
-    const double x = 0.5 * (rock.nodes.x[na] + rock.nodes.x[nb]), y = 0.5 * (rock.nodes.y[na] + rock.nodes.y[nb]);
-    int ci = 0, cj = 0;
-    const bool inside = cell_of(g, x, y, ci, cj);
-    int fi = -1, fj = -1;
-    if (inside && active(ci, cj)) {
-      fi = ci, fj = cj;
-    } else if (places.outline[J]) {
-      double best = 1e300;
-      for (int j = imax(0, cj - 1); j <= imin(g.ny - 1, cj + 1); ++j)
-        for (int i = imax(0, ci - 1); i <= imin(g.nx - 1, ci + 1); ++i) {
-          if (!active(i, j)) continue;
-          const double dx = g.cell_x(i) - x, dy = g.cell_y(j) - y, d = dx * dx + dy * dy;
-          if (d < best) best = d, fi = i, fj = j;
-        }
+    const int oa = end % 2 == 0 ? jn.a1 : jn.a0, ob = end % 2 == 0 ? jn.b0 : jn.b1;  // the segment's other end
+    const double ax = rock.nodes.x[na], ay = rock.nodes.y[na], bx = rock.nodes.x[nb], by = rock.nodes.y[nb];
+    // out of the crack: from the middle of its other end towards this one, half a cell
+    double ox = 0.5 * (ax + bx - rock.nodes.x[oa] - rock.nodes.x[ob]), oy = 0.5 * (ay + by - rock.nodes.y[oa] - rock.nodes.y[ob]);
+    const double len = sqrt(ox * ox + oy * oy), shift = 0.5 * (g.dx > g.dy ? g.dx : g.dy);
+    ox = len > 0.0 ? shift * ox / len : 0.0, oy = len > 0.0 ? shift * oy / len : 0.0;
+    double mass = 0.0, energy = 0.0, products = 0.0, alpha_mass = 0.0;
+    ChannelConserved content[kMouthSamples];  // each sample cell's mass, internal energy, products, alpha mass
+    int found = 0;
+    for (int k = 0; k < kMouthSamples; ++k) {
+      content[k] = {0, 0, 0, 0, 0};
+      const double t = (k + 0.5) / kMouthSamples;
+      int fi = -1, fj = -1;
+      if (!nearest_active_cell(g, active, ax + t * (bx - ax) + ox, ay + t * (by - ay) + oy, fi, fj)) continue;
+      mouth_cells.cell[kMouthSamples * J + k] = fj * g.nx + fi;
+      ++found;
+      const double rho = cells.s.rho.f(fi, fj);
+      const cip::GasCellsRead::Fractions f = cells.fractions(fi, fj);
+      content[k] = {rho, 0.0, rho * cells.s.e.f(fi, fj), rho * f.Y, rho * f.alpha};
+      mass += rho, energy += content[k].E, products += content[k].m1, alpha_mass += content[k].am;
     }
-    if (fi < 0) return;
-    const cip::GasCellsRead::Fractions f = cells.fractions(fi, fj);
-    mouths.open[J] = 1, mouth_cells.cell[J] = fj * g.nx + fi;
-    mouths.reservoir[J] = channel_state(mat, cells.s.rho.f(fi, fj), 0.0, cells.s.e.f(fi, fj), f.Y, f.alpha);
+    if (found == 0) return;
+    mouths.open[J] = 1;
+    mouths.reservoir[J] = channel_state(mat, mass / found, 0.0, energy / mass, products / mass, alpha_mass / mass);
+    // Each sample's share of what the mouth moves: of each quantity in proportion to its cell's own content of
+    // it (a quantity none of them holds, in proportion to mass). So a draw takes the same fraction of every
+    // sample cell's mass, internal energy and fractions, a cold cell does not pay for a hot neighbour's enthalpy,
+    // and no cell's fraction leaves [0, 1].
+    for (int k = 0; k < kMouthSamples; ++k) {
+      const ChannelConserved& c = content[k];
+      mouth_cells.share[kMouthSamples * J + k] =
+          mouth_cells.cell[kMouthSamples * J + k] < 0
+              ? ChannelConserved{0, 0, 0, 0, 0}
+              : ChannelConserved{c.m / mass, 0.0, energy > 0.0 ? c.E / energy : c.m / mass,
+                                 products > 0.0 ? c.m1 / products : c.m / mass,
+                                 alpha_mass > 0.0 ? c.am / alpha_mass : c.m / mass};
+    }
   }
 };
 
-//! The cell key of every deposit record (0 .. junctions - 1: the mouths, then the segments' hand-overs; a
-//! record without a cell sorts last).
+//! How many mouth samples open into each cell (one thread per sorted record; the first of a run of equal cell
+//! keys counts the run's mouth records and writes the count to each of them): cells shared by the mouths of
+//! several junctions lend each of them only their share of their gas (MouthHeldGasKernel).
+struct MouthSharersKernel {
+  CrackDepositOrder<Access::read> order;
+  CrackMouthCells<Access::read_write> mouth_cells;
+  int mouth_records, records;
+  BLAST_HD void operator()(index_t ki) const {
+    const int k = static_cast<int>(ki);
+    const int c = order.key[k];
+    if (c == 0x7fffffff || (k > 0 && order.key[k - 1] == c)) return;
+    int n = 0, end = k;
+    for (; end < records && order.key[end] == c; ++end) n += order.record[end] < mouth_records ? 1 : 0;
+    for (int r = k; r < end; ++r)
+      if (order.record[r] < mouth_records) mouth_cells.sharers[order.record[r]] = n;
+  }
+};
+
+//! The gas a mouth may draw on (one thread per open junction): its sample cells' gas over the largest number of
+//! mouth samples that share one of them. The junction draws at most a quarter of it over a coupled step
+//! (JunctionFluxKernel) and takes it from each sample cell in proportion to the cell's mass (CrackMouthKernel's
+//! shares), so the mouths that open into one cell take at most a quarter of its gas together, and the same
+//! fraction of its internal energy times h0 / e of the mixed reservoir (gamma for an ideal gas at rest: at most
+//! 0.35 of it for gamma 1.4), which keeps it positive.
+struct MouthHeldGasKernel {
+  cip::GasGrid g;
+  cip::GasCellsRead cells;
+  CrackMouthCells<Access::read> mouth_cells;
+  CrackMouths<Access::read_write> mouths;
+  BLAST_HD void operator()(index_t ji) const {
+    const int J = static_cast<int>(ji);
+    if (!mouths.open[J]) return;
+    double mass = 0.0;
+    int most = 1;
+    for (int k = 0; k < kMouthSamples; ++k) {
+      const int rec = kMouthSamples * J + k, c = mouth_cells.cell[rec];
+      if (c < 0) continue;
+      mass += cells.s.rho.f(c % g.nx, c / g.nx) * g.cell_area();
+      most = mouth_cells.sharers[rec] > most ? mouth_cells.sharers[rec] : most;
+    }
+    mouths.reservoir_mass[J] = mass / most;
+  }
+};
+
+//! The cell each segment's handed gas goes to (one thread per segment, after the gas step, before the mouths): the active cell
+//! nearest to the middle of its gap (3 x 3 block); -1 for a segment that handed nothing. A segment whose gap
+//! opened no active cell (rare: other rock over it) takes its gas back and stays a gas segment.
+struct HandoverCellKernel {
+  fdem::RockView rock;
+  cip::GasGrid g;
+  Field2D<const std::uint8_t> active;
+  CrackSegments<Access::read_write> seg;
+  CrackHandovers<Access::read_write> handovers;
+  BLAST_HD void operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    handovers.cell[s] = -1;
+    if (!handovers.pending[s]) return;
+    const JointFaces f = joint_faces(rock, s);
+    const double x = 0.25 * (f.a0.x + f.a1.x + f.b0.x + f.b1.x), y = 0.25 * (f.a0.y + f.a1.y + f.b0.y + f.b1.y);
+    int fi = -1, fj = -1;
+    if (nearest_active_cell(g, active, x, y, fi, fj)) {
+      handovers.cell[s] = fj * g.nx + fi;
+      return;
+    }
+    seg.kind[s] = kSegmentGas, seg.cons[s] = handovers.gas[s];
+    handovers.pending[s] = 0, handovers.gas[s] = {0, 0, 0, 0, 0};
+  }
+};
+
+//! One conserved quantity of segment s's hand-over not yet in a cell (0 without one), for reductions.
+struct PendingHandoverOf {
+  CrackHandovers<Access::read> h;
+  double ChannelConserved::*field;
+  BLAST_HD double operator()(index_t s) const { return h.pending[s] ? h.gas[s].*field : 0.0; }
+};
+
+//! Clears the hand-overs just deposited (one thread per segment).
+struct HandoverClearKernel {
+  CrackHandovers<Access::read_write> handovers;
+  BLAST_HD void operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    if (handovers.cell[s] < 0) return;
+    handovers.pending[s] = 0, handovers.gas[s] = {0, 0, 0, 0, 0}, handovers.cell[s] = -1;
+  }
+};
+
+//! The cell key of every deposit record (0 .. kMouthSamples x junctions - 1: the mouths' cells, then the
+//! segments' hand-overs; a record without a cell sorts last).
 struct CrackDepositKeyKernel {
   CrackMouthCells<Access::read> mouth_cells;
   CrackHandovers<Access::read> handovers;
   CrackDepositOrder<Access::read_write> order;  //!< writes key
-  int junctions;
+  int mouth_records;  //!< kMouthSamples x junctions
   BLAST_HD void operator()(index_t k) const {
-    const int c = k < junctions ? mouth_cells.cell[k] : handovers.cell[k - junctions];
+    const int c = k < mouth_records ? mouth_cells.cell[k] : handovers.cell[k - mouth_records];
     order.key[k] = c < 0 ? 0x7fffffff : c;
   }
 };
 
+//! What deposit record `rec` gives its cell: a mouth cell its share of its junction's deposit (CrackMouthKernel),
+//! a segment its hand-over.
+BLAST_HD inline ChannelConserved deposit_record(const CrackMouthCells<Access::read>& mouth_cells,
+                                                const CrackDeposits<Access::read>& deposits,
+                                                const CrackHandovers<Access::read>& handovers, int mouth_records, int rec) {
+  if (rec >= mouth_records) return handovers.gas[rec - mouth_records];
+  const ChannelConserved d = deposits.deposit[rec / kMouthSamples], f = mouth_cells.share[rec];
+  return {d.m * f.m, 0.0, d.E * f.E, d.m1 * f.m1, d.am * f.am};
+}
+
 //! Adds the cracks' deposits to their cells (one thread per run of equal cell keys in the sorted records: the
 //! first of the run sums them in sorted order, so the bytes do not depend on the thread schedule). Records
-//! 0 .. junctions - 1 are the mouths' deposits, the rest the segments' hand-overs. The deposited energy is
+//! 0 .. kMouthSamples x junctions - 1 are the mouths' cells (deposit_record()), the rest the segments' hand-overs. The deposited energy is
 //! internal energy of the cell (the cell's faces keep their velocities).
 struct CrackDepositKernel {
   CrackDepositOrder<Access::read> order;  //!< sorted cell keys (INT_MAX: none), the record of each sorted position
+  CrackMouthCells<Access::read> mouth_cells;
   CrackDeposits<Access::read> deposits;
   CrackHandovers<Access::read> handovers;
-  int junctions, records, nx;
+  CrackExchangeLedger<Access::read_write> ledger;
+  int mouth_records, records, nx;
   double cell_area;
   cip::GasCells cells;
   BLAST_HD void operator()(index_t ki) const {
@@ -199,27 +478,61 @@ struct CrackDepositKernel {
     ChannelConserved sum{0, 0, 0, 0, 0};
     for (int r = k; r < records && order.key[r] == c; ++r) {
       const int rec = order.record[r];
-      const ChannelConserved d = rec < junctions ? deposits.deposit[rec] : handovers.gas[rec - junctions];
+      const ChannelConserved d = deposit_record(mouth_cells, deposits, handovers, mouth_records, rec);
       sum.m += d.m, sum.E += d.E, sum.m1 += d.m1, sum.am += d.am;
+      ChannelConserved& l = ledger.to_grid[rec];
+      l.m += d.m, l.E += d.E, l.m1 += d.m1, l.am += d.am;
     }
     cells.deposit(c % nx, c / nx, cip::CellContent{sum.m, sum.E, sum.m1, sum.am}, cell_area);
   }
 };
 
-//! The pressure of a crack's own gas on its two faces (docs/coupling.md "Gas in the cracks"), over what the
-//! grid gas put there (one thread per joint): p times crack_width()'s dw_dopening, so that the faces' work is
-//! the gas's p dV. Face A of joint s is edge slot a0, face B slot b0.
-struct CrackFacePressureKernel {
+//! The gas of a crack as a cushion between its faces over the rock steps of one coupled step (docs/coupling.md
+//! "Gas in the cracks"), one thread per joint. The first call (start: load_rock()) takes the gas's state after
+//! the channel's own steps as the start of an isentrope, p = p0 (V0 / V)^k with k = 1 + p0 V0 / U0 (exact for an
+//! ideal gas); before every later rock substep the faces' new volume V (JointFaces' opening times their mean
+//! length) gives the gas's pressure on that isentrope. The faces carry p times crack_width()'s dw_dopening over
+//! the grid gas's load (face A is edge slot a0, face B slot b0), and the work of the last substep's load, that
+//! load times swept_area(), is added up: the rock's own ledger of that load's work, which the gas pays in the
+//! next cover(). So a crack that closes on its gas within a coupled step stiffens as it closes, and the energy
+//! budget closes whatever way the faces move. Positions are taken at x - v dt / 2 (`lag`), where the rock's
+//! work ledger measures a substep's moves.
+struct CrackCushionKernel {
   fdem::RockView rock;
+  CrackSegmentParams params;
   CrackSegments<Access::read> seg;
-  CrackHandovers<Access::read> handovers;  //!< reads load_factor
+  CrackCushion<Access::read_write> cushion;
+  double residual_aperture;
+  double lag;  //!< [s] half the rock's last step (joint_faces())
+  bool start;  //!< load_rock(): a new isentrope from the gas's state
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
     if (seg.kind[s] != kSegmentGas) return;
+    const JointFaces f = joint_faces(rock, s, lag);
+    const CrackWidth cw = crack_width(f.opening + params.initial_aperture[s], residual_aperture);
+    const double V = 0.5 * (f.la + f.lb) * cw.w;
+    double p = 0.0;
+    if (start) {
+      const ChannelPrimitive P = seg.prim[s];
+      const ChannelConserved c = seg.cons[s];
+      const double U = c.m > 0.0 ? c.E - 0.5 * c.q * c.q / c.m : 0.0;
+      p = is_vacuum(P) || !(U > 0.0) ? 0.0 : P.p;
+      cushion.on[s] = 1, cushion.p0[s] = p, cushion.V0[s] = V, cushion.work[s] = 0.0;
+      cushion.exponent[s] = p > 0.0 ? 1.0 + p * V / U : 1.0;
+    } else {
+      if (!cushion.on[s]) return;
+      cushion.work[s] += cushion.applied[s] * swept_area(cushion.faces[s], f);
+      p = cushion.p0[s] * pow(cushion.V0[s] / V, cushion.exponent[s]);
+    }
     const fdem::JointNodes jn = rock.joint.nodes[s];
-    const double p = seg.prim[s].p * handovers.load_factor[s];
-    rock.loads.pressure[jn.a0] = p;
-    rock.loads.pressure[jn.b0] = p;
+    const fdem::NodeMotion<Access::read>& x = rock.nodes;
+    const fdem::Vec2 na = fdem::edge_outward_normal(x.position(jn.a0), x.position(jn.a1));
+    const fdem::Vec2 nb = fdem::edge_outward_normal(x.position(jn.b0), x.position(jn.b1));
+    cushion.faces[s] = {f.a0.x, f.a0.y, f.a1.x, f.a1.y, f.b0.x, f.b0.y, f.b1.x, f.b1.y, na.x, na.y, nb.x, nb.y};
+    const double applied = p * cw.dw_dopening;
+    cushion.applied[s] = applied;
+    rock.loads.pressure[jn.a0] = applied;
+    rock.loads.pressure[jn.b0] = applied;
   }
 };
 

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace blastsim {
@@ -20,22 +21,35 @@ class CheckpointReader;
 
 namespace blastsim::ibm {
 
-//! Parameters of the crack gas model (input section [crack_gas], docs/input.md).
+//! Parameters of the crack gas model (input section [crack_gas], docs/input.md; docs/coupling.md "Gas in the
+//! cracks" gives their sources).
 struct CrackGasOptions {
-  double residual_aperture = 1e-5;  //!< [m] aperture of a closed crack (its gas volume is L x this)
-  double friction_factor = 0.1;     //!< rough-wall Darcy friction factor [-]
+  double residual_aperture = 1e-5;  //!< [m] aperture of a crack whose faces touch (its gas volume is L x this)
+  //! A constant rough-wall Darcy friction factor [-]; unset: Louis's law of the relative roughness
+  //! roughness / (2 w) (louis_friction()), which falls as the crack opens.
+  std::optional<double> friction_factor;
+  std::optional<double> roughness;  //!< [m] asperity height of the crack walls; unset: the residual aperture
   double viscosity = 5e-5;          //!< gas dynamic viscosity [Pa s] (laminar friction floor)
   double courant = 0.4;             //!< Courant number of the channel solver's substeps
   bool second_order = true;         //!< MUSCL-Hancock along straight chains (first order otherwise)
-  //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0,
-  //! viscosity >= 0 and 0 < courant <= 1 (all finite).
+  //! [cells] a crack whose faces are this many grid cells apart is the grid's (its gas handed to the cells it
+  //! opens); narrower ones carry their own gas and are solid to the grid (docs/coupling.md "Hand-over")
+  double handover_width = kDefaultHandoverWidth;
+  static constexpr double kDefaultHandoverWidth = 2.0;
+  //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0, roughness > 0,
+  //! viscosity >= 0, 0 < courant <= 1 and handover_width >= 1 (all finite).
   void validate() const;
+  //! The kernels' flow parameters: a constant friction factor, or Louis's law with the roughness.
+  ChannelFlowParams flow() const {
+    return {friction_factor.value_or(-1.0), roughness.value_or(residual_aperture), viscosity};
+  }
 };
 
 //! Per segment (joint), for output: the aperture [m] of a crack (0 for an intact joint), and the pressure [Pa]
 //! and mass [kg/m] of its own gas (0 where it has none).
 struct CrackSegmentFields {
   std::vector<double> aperture, gas_pressure, gas_mass;
+  std::vector<double> blast_gas_fraction;  //!< mass fraction of the blast gas (products or traced gas) [-]
 };
 
 //! Sums over the gas segments.
@@ -47,6 +61,10 @@ struct CrackGasTotals {
   double max_pressure = 0;   //!< [Pa]
   long gas_segments = 0;     //!< segments that hold their own gas (kSegmentGas)
   long wet_segments = 0;     //!< of those, segments above 1.5 times the reference pressure
+  // the coupling's ledgers since the start (CrackGasCoupling; 0 for a network alone)
+  double to_grid_mass = 0;    //!< [kg/m] given to the grid's cells through mouths and hand-overs (< 0: taken)
+  double to_grid_energy = 0;  //!< [J/m] likewise
+  double wall_work = 0;       //!< [J/m] work of the cracks' gas on their walls (the rock's work from it)
 };
 
 namespace detail {
@@ -118,7 +136,8 @@ class CrackGas {
   const CrackGasOptions& options() const { return options_; }
 
  private:
-  void step_from_primitives(double dt);  //!< step() once the primitives are current
+  //! step() once the primitives are current: a substep of dt within an advance() of `interval` [s]
+  void step_from_primitives(double dt, double interval);
   void check_kinds(const CheckpointReader& r) const;  //!< every restored kind is a CrackSegmentKind
   int segments_ = 0, junctions_ = 0;
   cip::GasMaterials mat_;

@@ -6,10 +6,12 @@
 #pragma once
 
 #include "blastsim/ibm/coupling_process.hpp"
+#include "blastsim/ibm/crack_coupling_kernels.hpp"
 #include "blastsim/ibm/crack_gas.hpp"
 
 #include <array>
 #include <memory>
+#include <vector>
 
 namespace blastsim::ibm {
 
@@ -29,24 +31,45 @@ class CrackGasCoupling : public CouplingProcess {
   CrackGas& crack_gas() { return *crack_; }
   const CrackGas& crack_gas() const { return *crack_; }
 
-  //! Before the gas step: every channel's length and aperture from the rock (crack_width()); joints that just
-  //! broke become empty gas segments; a gas segment whose volume changes does p dV on its walls; a segment
-  //! whose face meets an active cell hands its gas to that cell (CrackGeometryKernel).
-  void before_gas(CouplingContext& ctx, double dt) override;
+  //! Rock -> gas (before the masks are made): every channel's length and aperture from the rock (crack_width());
+  //! joints that just broke become empty gas segments; a gas segment whose volume changes does p dV on its
+  //! walls; one whose faces are CrackGasOptions::handover_width cells apart hands its gas to the grid
+  //! (CrackGeometryKernel); the gaps of the cracks that keep their own gas are solid to the grid
+  //! (CrackGapCoverKernel).
+  void cover(CouplingContext& ctx) override;
   //! After the gas step: the mouths from the cells' new gas, the channels' own steps over dt (as many as their
-  //! Courant limit needs), then what they gave to or took from the cells (deposits sorted by cell: the same
-  //! bytes whatever the thread order).
+  //! Courant limit needs), then what they gave to or took from the cells and the gas handed over (deposits
+  //! sorted by cell: the same bytes whatever the thread order).
   void after_gas(CouplingContext& ctx, double dt) override;
-  //! The faces of every crack with its own gas take its pressure (after the grid gas's load).
+  //! The faces of every crack with its own gas take its pressure (after the grid gas's load): the start of the
+  //! isentrope its gas follows as a cushion over the coming rock steps (CrackCushionKernel).
   void load_rock(CouplingContext& ctx) override;
+  //! Before every later rock substep: the cushions' pressures from their faces' new volumes.
+  bool updates_rock_steps() const override { return true; }
+  void before_rock_step(CouplingContext& ctx, int k) override;
 
-  //! Largest gas pressure [Pa] of the cracks at their mouths on the mesh outline farther than `radius` [m]
-  //! from `center` (e.g. on the outer free face of a disc around a hole; a device reduction).
-  double mouth_pressure(const fdem::RockSolver& rock, std::array<double, 2> center, double radius) const;
-  //! The crack gas's front [m]: the largest distance from `center` of the midpoint of a crack that holds its
-  //! own gas above `pressure` [Pa] (e.g. a quarter of the blasthole's pressure: how far the hole's gas has gone
-  //! through the crack network); 0 when none does (a device reduction).
-  double front(const fdem::RockSolver& rock, std::array<double, 2> center, double pressure) const;
+  //! Pre-cut cracks whose faces touch in the mesh but stand `aperture` [m] apart (a hydraulic opening added
+  //! to the faces' own; [[rock.crack]] initial_aperture). Throws InputError for a joint out of range or a
+  //! negative aperture.
+  void set_initial_apertures(const std::vector<int>& joints, double aperture);
+  //! The crack widths [m] of the hand-over to the grid and back on grid g.
+  HandoverGaps handover_gaps(const cip::GasGrid& g) const;
+  //! The gap points a crack face's triangle owns lie within half the gap's widest end: 1.5 x the hand-over
+  //! width (a gas segment's mean opening is below it) and a cell.
+  double owner_margin(const cip::GasGrid& g) const override {
+    return 1.5 * handover_gaps(g).handover + std::max(g.dx, g.dy);
+  }
+
+  //! Largest traced (blast) gas mass fraction [-] of the cracks at their mouths on the mesh outline farther
+  //! than `radius` [m] from `center`, among those whose pressure is at least `min_pressure` [Pa] (a device
+  //! reduction): the blast gas reaching the outer free face through the cracks.
+  double outer_blast_fraction(const fdem::RockSolver& rock, std::array<double, 2> center, double radius,
+                              double min_pressure) const;
+  //! The blast gas's front in the cracks [m]: the largest distance from `center` of the midpoint of a crack
+  //! whose own gas is at least `min_fraction` blast gas at a pressure of at least `min_pressure` [Pa]; 0 when
+  //! none is (a device reduction).
+  double blast_front(const fdem::RockSolver& rock, std::array<double, 2> center, double min_fraction,
+                     double min_pressure) const;
 
   //! The crack gas's totals; its energy is held outside the grid and the rock (CouplingDiagnostics).
   void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
@@ -55,6 +78,7 @@ class CrackGasCoupling : public CouplingProcess {
 
  private:
   std::unique_ptr<CrackGas> crack_;
+  void load_cushions(CouplingContext& ctx, bool start);
   std::unique_ptr<detail::CrackCouplingArrays> a_;
 };
 

@@ -22,8 +22,13 @@
 
 namespace blastsim::ibm {
 
-//! Densities below this [kg/m3] are vacuum to the channel solver (a freshly broken joint starts empty).
-inline constexpr double kCrackVacuumDensity = 1e-9;
+//! Densities below this [kg/m3] are vacuum to the channel solver (a freshly broken joint starts empty): the
+//! thin edge of gas expanding into an empty crack carries no pressure and sends no flux until more gas arrives.
+//! Counted as gas, it runs ahead of the rarefaction at u + 2 c / Gamma, its motion turns into heat at the walls
+//! (the laminar friction 12 mu / (rho w^2) grows without bound as rho falls), and a wisp of it at millions of
+//! kelvin would set the channel's substeps (with 1e-9 it did; 1e-2, a hundredth of air's density, keeps the
+//! fronts of C9 within a few per cent of the similarity solution with 20 to 40 times fewer substeps).
+inline constexpr double kCrackVacuumDensity = 1e-2;
 //! Most segments that may meet at one junction (the mesh's largest vertex degree is checked against it).
 inline constexpr int kCrackMaxDegree = 16;
 
@@ -152,14 +157,45 @@ BLAST_HD inline NozzleFlow nozzle_flow(double rho0, double p0, double k, double 
   return {rho * u, r * p0, u};
 }
 
-//! Friction rate k [1/s] of a channel of aperture w [m]: dq/dt = -k q, from the Darcy-Weisbach wall shear
-//! tau = f rho u |u| / 8 on both walls (hydraulic diameter 2 w): k = f |u| / (4 w), with f the larger of the
-//! rough-wall factor f_rough and the laminar 96 / Re (Re = rho |u| 2 w / mu; parallel plates), so a slow flow
-//! follows the cubic law (mean velocity w^2 / (12 mu) times the pressure gradient).
-BLAST_HD inline double friction_rate(double rho, double u, double w, double f_rough, double mu) {
-  const double turbulent = f_rough * fabs(u) / (4.0 * w);
+//! Darcy friction factors of a rough channel of relative roughness r = k / D_h (asperity height k over the
+//! hydraulic diameter D_h = 2 w), after Louis (1969, "A study of groundwater flow in jointed rock and its
+//! influence on the stability of rock masses", Imperial College Rock Mech. Res. Rep. 10; the laws are
+//! reproduced in Hoek & Bray 1981, "Rock Slope Engineering", 3rd ed., ch. 6): fully rough turbulent flow
+//! 1 / sqrt(f) = 2 log10(3.7 / r) for r <= 0.033 (Nikuradse's law, the rough end of Moody's chart) and
+//! 1 / sqrt(f) = 2 log10(1.9 / r) above (Louis's joints of high relative roughness); laminar flow f = 96 / Re,
+//! times 1 + 8.8 r^1.5 above r = 0.033. r is capped at 1 (Louis's data end near 0.5; beyond 1.9 his law has no
+//! value).
+struct RoughChannelFriction {
+  double turbulent;       //!< fully rough Darcy factor [-]
+  double laminar_factor;  //!< multiplier of the smooth laminar 96 / Re [-]
+};
+BLAST_HD inline RoughChannelFriction louis_friction(double r) {
+  r = r > 1.0 ? 1.0 : r;
+  if (!(r > 0.0)) return {0.0, 1.0};
+  const bool high = r > 0.033;
+  const double l = 2.0 * log10((high ? 1.9 : 3.7) / r);
+  return {1.0 / (l * l), high ? 1.0 + 8.8 * r * sqrt(r) : 1.0};
+}
+
+//! The physical parameters of the channel flow (CrackGasOptions' kernel part).
+struct ChannelFlowParams {
+  double friction_factor;  //!< a constant rough-wall Darcy factor [-], or < 0: Louis's law of the roughness
+  double roughness;        //!< asperity height k [m] of Louis's law
+  double viscosity;        //!< [Pa s], laminar floor of the friction
+};
+
+//! Friction rate [1/s] of a channel of aperture w [m]: dq/dt = -rate q, from the Darcy-Weisbach wall shear
+//! tau = f rho u |u| / 8 on both walls (hydraulic diameter 2 w): rate = f |u| / (4 w), with f the larger of the
+//! rough-wall factor and the laminar one, 96 / Re (Re = rho |u| 2 w / mu; parallel plates) times Louis's
+//! roughness factor, so a slow flow follows the cubic law (mean velocity w^2 / (12 mu) times the pressure
+//! gradient, reduced by the roughness). The rough-wall factor is flow.friction_factor when >= 0, else
+//! louis_friction(k / (2 w)): a crack's walls are rougher the narrower it is.
+BLAST_HD inline double friction_rate(double rho, double u, double w, const ChannelFlowParams& flow) {
+  const RoughChannelFriction f =
+      flow.friction_factor >= 0.0 ? RoughChannelFriction{flow.friction_factor, 1.0} : louis_friction(0.5 * flow.roughness / w);
+  const double turbulent = f.turbulent * fabs(u) / (4.0 * w);
   if (!(rho > kCrackVacuumDensity)) return turbulent;
-  return fmax(turbulent, 12.0 * mu / (rho * w * w));
+  return fmax(turbulent, f.laminar_factor * 12.0 * flow.viscosity / (rho * w * w));
 }
 
 //! minmod slope limiter.
@@ -203,7 +239,8 @@ BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat,
 //! Per junction, set by the coupling every step (or by CrackGas::set_reservoirs()): the mouths.
 #define BLASTSIM_CRACK_MOUTHS(X)                                                       \
   X(std::uint8_t, open, "1: opens into a gas reservoir (a grid cell)")                 \
-  X(ChannelPrimitive, reservoir, "the reservoir's state (at rest)")
+  X(ChannelPrimitive, reservoir, "the reservoir's state (at rest)")                    \
+  X(double, reservoir_mass, "the gas [kg/m] the reservoir holds (infinity: unlimited)")
 //! Per junction: what went into its reservoir since the last clear (mass, energy, products).
 #define BLASTSIM_CRACK_DEPOSITS(X) X(ChannelConserved, deposit, "m, E, m1, am [per m of thickness]")
 
@@ -214,12 +251,6 @@ BLASTSIM_VIEW_GROUP(CrackEndStates, BLASTSIM_CRACK_END_STATES)
 BLASTSIM_VIEW_GROUP(CrackEndFluxes, BLASTSIM_CRACK_END_FLUXES)
 BLASTSIM_VIEW_GROUP(CrackMouths, BLASTSIM_CRACK_MOUTHS)
 BLASTSIM_VIEW_GROUP(CrackDeposits, BLASTSIM_CRACK_DEPOSITS)
-
-//! The physical parameters of the channel flow (CrackGasOptions' kernel part).
-struct ChannelFlowParams {
-  double friction_factor;  //!< rough-wall Darcy factor [-]
-  double viscosity;        //!< [Pa s], laminar floor of the friction
-};
 
 //! Primitive state of every segment that holds gas.
 struct SegmentPrimitiveKernel {
@@ -303,7 +334,10 @@ BLAST_HD inline ChannelFlux scaled(const ChannelFlux& f, double a) { return {f.m
 //! threads write the same entry). Momentum is in each segment's outward direction at that end.
 //! - a mouth: every end exchanges with the reservoir through a steady nozzle (nozzle_flow(): gas flows from
 //!   the side of higher pressure, from that side's stagnation state, choked at M = 1), flux area = its aperture;
-//!   what leaves the cracks is added to the junction's deposit (in entry order: deterministic);
+//!   what leaves the cracks is added to the junction's deposit (in entry order: deterministic). The reservoir
+//!   (a grid cell) keeps its state over the channel's substeps, so what the cracks draw from it over the whole
+//!   interval is held to a quarter of the gas it holds (the nozzles' inflow scaled down together); gas that
+//!   reaches the mouth faster than sound leaves with its own flux (no nozzle can pass more);
 //! - one gas segment, no mouth: a closed end (wall_pressure());
 //! - k >= 2 gas segments: every pair exchanges an HLLC flux through min(w_a, w_b) / (k - 1) (a straight chain:
 //!   the smaller aperture), computed once per pair and given to both with opposite signs (exact conservation).
@@ -317,6 +351,7 @@ struct JunctionFluxKernel {
   CrackEndFluxes<Access::read_write> fluxes;
   CrackDeposits<Access::read_write> deposits;
   double dt;
+  double interval;  //!< [s] the whole step the substeps of dt fill (the reservoirs' states are held over it)
   BLAST_HD void operator()(index_t ji) const {
     const int J = static_cast<int>(ji);
     int ends[kCrackMaxDegree];
@@ -332,6 +367,13 @@ struct JunctionFluxKernel {
     if (mouths.open[J]) {
       const ChannelPrimitive r = mouths.reservoir[J];
       ChannelConserved dep = deposits.deposit[J];
+      double drawn = 0.0;  // [kg/(m s)] the nozzles' inflow from the reservoir
+      for (int a = 0; a < k; ++a) {
+        const ChannelPrimitive s = inward(ends[a]);
+        if (r.p > s.p) drawn += nozzle_flow(r.rho, r.p, r.rho * r.c * r.c / r.p, s.p).G * geo.aperture[ends[a] / 2];
+      }
+      const double held = 0.25 * mouths.reservoir_mass[J];
+      const double scale = drawn * interval > held ? held / (drawn * interval) : 1.0;
       for (int a = 0; a < k; ++a) {
         const int end = ends[a];
         const double w = geo.aperture[end / 2];
@@ -339,8 +381,10 @@ struct JunctionFluxKernel {
         ChannelFlux o{0, 0, 0, 0, 0};
         if (r.p > s.p) {  // into the crack from the reservoir at rest
           const NozzleFlow nf = nozzle_flow(r.rho, r.p, r.rho * r.c * r.c / r.p, s.p);
-          const double h0 = (r.Edens + r.p) / r.rho;
-          o = {-nf.G * w, (nf.G * nf.u + nf.p) * w, -nf.G * h0 * w, -nf.G * r.Y * w, -nf.G * r.alpha * w};
+          const double h0 = (r.Edens + r.p) / r.rho, G = scale * nf.G;
+          o = {-G * w, (G * nf.u + nf.p) * w, -G * h0 * w, -G * r.Y * w, -G * r.alpha * w};
+        } else if (!is_vacuum(s) && s.u >= s.c) {  // out of the crack at its own supersonic speed: no nozzle
+          o = scaled(physical_flux(s), w);
         } else if (!is_vacuum(s)) {  // out of the crack from its stagnation state
           const double kx = s.rho * s.c * s.c / s.p;
           const double M = s.u > 0 ? s.u / s.c : 0.0, T = 1.0 + 0.5 * (kx - 1.0) * M * M;
@@ -400,7 +444,7 @@ struct SegmentUpdateKernel {
     c.q -= dt * (o1.q - o0.q - seg.prim[s].p * (ends.end_area[2 * s + 1] - ends.end_area[2 * s]));
     const double V = seg.volume[s];
     if (c.m > kCrackVacuumDensity * V) {
-      const double k = friction_rate(c.m / V, c.q / c.m, geo.aperture[s], flow.friction_factor, flow.viscosity);
+      const double k = friction_rate(c.m / V, c.q / c.m, geo.aperture[s], flow);
       c.q /= 1.0 + dt * k;
     } else {
       c.q = 0.0;  // vacuum holds no momentum

@@ -79,6 +79,7 @@ struct FaceLoadKernel {
   FaceOwners<Access::read> owners;
   Field2D<const double> P;  // p + q of the last step [Pa]
   bool use_step_pressure;
+  double owner_margin;  // [m] how far outside a triangle with a crack face its face points may lie (crack gaps)
   BLAST_HD double pressure(int i, int j) const {
     return use_step_pressure ? P(i, j) : cip::cell_pressure(mat, materials, rho(i, j), e(i, j), i, j);
   }
@@ -87,8 +88,10 @@ struct FaceLoadKernel {
     double x[3], y[3];
     for (int k = 0; k < 3; ++k) x[k] = rock.nodes.x[3 * t + k], y[k] = rock.nodes.y[3 * t + k];
     double fx[3] = {0.0, 0.0, 0.0}, fy[3] = {0.0, 0.0, 0.0};
+    bool crack_face = false;  // the gap beside a crack face may hold face points this triangle owns
+    for (int k = 0; k < 3; ++k) crack_face = crack_face || rock.edges.exposed[3 * t + k] == fdem::kEdgeCrackFace;
     for (int face = 0; face < 2; ++face) {
-      const FaceBox b = triangle_face_box(g, x, y, face);
+      const FaceBox b = triangle_face_box(g, x, y, face, crack_face ? owner_margin : 0.0);
       const double ox = b.ox, oy = b.oy;
       const Field2D<const int> owner = face == 0 ? owners.u : owners.v;  // by value: no run-time-chosen reference
       for (int j = b.j0; j <= b.j1; ++j)

@@ -52,14 +52,16 @@ BLASTSIM_VIEW_GROUP(ImmersedLedger, BLASTSIM_IBM_LEDGER)
 
 //! The face points of one kind (face 0: x-faces at (x_min + i dx, y_min + (j + 1/2) dy); 1: y-faces at
 //! (x_min + (i + 1/2) dx, y_min + j dy)) inside the bounding box of the triangle with nodes (x, y): indices
-//! i0..i1, j0..j1 (empty when i0 > i1 or j0 > j1) and the points' offsets in cells.
+//! i0..i1, j0..j1 (empty when i0 > i1 or j0 > j1) and the points' offsets in cells; `margin` [m] widens the box
+//! on every side.
 struct FaceBox {
   int i0, i1, j0, j1;
   double ox, oy;
 };
-BLAST_HD inline FaceBox triangle_face_box(const cip::GasGrid& g, const double* x, const double* y, int face) {
-  const double x0 = min_of(x[0], min_of(x[1], x[2])), x1 = max_of(x[0], max_of(x[1], x[2]));
-  const double y0 = min_of(y[0], min_of(y[1], y[2])), y1 = max_of(y[0], max_of(y[1], y[2]));
+BLAST_HD inline FaceBox triangle_face_box(const cip::GasGrid& g, const double* x, const double* y, int face,
+                                          double margin = 0.0) {
+  const double x0 = min_of(x[0], min_of(x[1], x[2])) - margin, x1 = max_of(x[0], max_of(x[1], x[2])) + margin;
+  const double y0 = min_of(y[0], min_of(y[1], y[2])) - margin, y1 = max_of(y[0], max_of(y[1], y[2])) + margin;
   const double ox = face == 0 ? 0.0 : 0.5, oy = face == 0 ? 0.5 : 0.0;
   const int ni = face == 0 ? g.nx + 1 : g.nx, nj = face == 0 ? g.ny : g.ny + 1;
   return {imax(0, static_cast<int>(ceil((x0 - g.x_min) / g.dx - ox))),
