@@ -13,7 +13,9 @@ overrides or the case file); --collect-only runs nothing and rebuilds the tables
 
 From each run it takes the crack length and broken joints (last row of rock_series.csv), fragments, X50, X80 and the
 crushed and cracked radius of hole 0 (last row of fragmentation_series.csv), and the time the gas leaves the
-rock's outer surface (summary.txt, possibly "not reached"), and writes
+rock's outer surface (summary.txt, possibly "not reached"), the blast gas's front at 0.2 / 0.4 / 0.6 m and its
+arrival at the outer surface (wall_series.csv, summary.txt; a run with the blasthole monitor) and the time the
+run reached, and writes
   DIR/realisations.csv  one row per seed
   DIR/realisations.md   per quantity: runs, mean, sample standard deviation (n-1), min, max and coefficient of
                         variation (std / |mean|); printed too
@@ -42,6 +44,11 @@ QUANTITIES = [
     ("hole0_cracked_radius_m", "fragmentation_series.csv", "hole0_cracked_radius_m", "hole 0 cracked radius [m]"),
 ]
 EJECTION = ("ejection_time_s", "gas ejection time [s]")
+# Times [s] (or "not reached") of the blast gas: its front (wall_series.csv, blast_gas_front_radius_m) first at
+# these distances [m] from the hole centre, and its arrival at the outer surface (summary.txt).
+FRONT_RADII = (0.2, 0.4, 0.6)
+BLAST = [(f"blast_front_{round(100 * r)}cm_s", f"blast gas front at {r:g} m [s]") for r in FRONT_RADII] + \
+        [("blast_arrival_s", "blast gas at the outer surface [s]"), ("end_s", "time reached [s]")]
 
 
 def last_row(path):
@@ -118,6 +125,21 @@ def collect(folder):
         row[EJECTION[0]] = None
     else:
         row[EJECTION[0]] = NOT_REACHED if m.group(1) == NOT_REACHED else float(m.group(1).split()[0])
+    # The blast gas (a run with the blasthole monitor and a traced gas); a run that stopped early reports the
+    # time it reached, and what it did not reach by then as "not reached".
+    try:
+        with open(folder / "wall_series.csv", newline="") as f:
+            wall = [r for r in csv.DictReader(f) if r.get("blast_gas_front_radius_m") not in (None, "")]
+    except FileNotFoundError:
+        wall = []
+    for (key, _), radius in zip(BLAST, FRONT_RADII):
+        hit = next((float(r["time_s"]) for r in wall if float(r["blast_gas_front_radius_m"]) >= radius), None)
+        row[key] = hit if hit is not None else (NOT_REACHED if wall else None)
+    text = summary.read_text() if summary.exists() else ""
+    m = re.search(r"blast gas reaches the rock's outer surface: (not reached|\S+ s)", text)
+    row["blast_arrival_s"] = None if m is None else NOT_REACHED if m.group(1) == NOT_REACHED else float(m.group(1).split()[0])
+    m = re.search(r"summary at t = (\S+) s", text)
+    row["end_s"] = float(m.group(1)) if m else None
     return row
 
 
@@ -149,7 +171,7 @@ def write_tables(args, out, failed):
     if not seeds:
         sys.exit(f"realisations: no seed_K folders (K = 1..{args.n}) in {out}")
     rows = {k: collect(out / f"seed_{k}") for k in seeds}
-    columns = [q[0] for q in QUANTITIES] + [EJECTION[0]]
+    columns = [q[0] for q in QUANTITIES] + [EJECTION[0]] + [b[0] for b in BLAST]
     with open(out / "realisations.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["seed", "directory"] + columns)
@@ -160,7 +182,7 @@ def write_tables(args, out, failed):
              f"overrides: {' '.join(args.overrides) or 'none'}.", "",
              "| quantity | runs | mean | std (n-1) | min | max | CV | notes |",
              "|---|---:|---:|---:|---:|---:|---:|---|"]
-    for key, _, _, label in QUANTITIES + [(EJECTION[0], None, None, EJECTION[1])]:
+    for key, _, _, label in QUANTITIES + [(EJECTION[0], None, None, EJECTION[1])] + [(k, None, None, l) for k, l in BLAST]:
         lines.append(statistics_line(label, [row[key] for row in rows.values()], len(seeds)))
     if len(seeds) < args.n:
         absent = sorted(set(range(1, args.n + 1)) - set(seeds))
