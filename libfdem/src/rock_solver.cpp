@@ -419,6 +419,7 @@ void RockSolver::set_velocities(const std::vector<double>& vxy) {
 
 void RockSolver::set_positions(const std::vector<double>& xy) {
   copy_node_pairs(xy, node_count(), a_->nodes.x, a_->nodes.y, "set_positions");
+  travel_since_build_ = buffer_;  // the nodes jumped: the contact broad phase is rebuilt before the next step
 }
 
 void RockSolver::set_edge_pressure(const std::vector<int>& slots, double pressure) {

@@ -79,7 +79,8 @@ class RockSolver {
   //! Sets every node's velocity [m/s] from a host array of 2 per node.
   void set_velocities(const std::vector<double>& vxy);
   //! Sets every node's position [m] from a host array of 2 per node (the reference mesh stays): moving whole
-  //! pieces rigidly, e.g. the two sides of a pre-cut crack apart, leaves their triangles unstrained.
+  //! pieces rigidly, e.g. the two sides of a pre-cut crack apart, leaves their triangles unstrained. The contact
+  //! search is rebuilt before the next step.
   void set_positions(const std::vector<double>& xy);
   //! Pressure [Pa] on the given edge slots (the rest keep theirs); pushes into the rock.
   void set_edge_pressure(const std::vector<int>& slots, double pressure);
