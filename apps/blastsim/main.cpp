@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <string>
 #include <vector>
 
 
@@ -56,8 +57,16 @@ int main(int argc, char** argv) {
   } catch (const InstabilityError& e) {
     std::cerr << "unstable: " << e.what() << "\n";
     return 3;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "input error: the case needs more memory than this machine could give (std::bad_alloc); use "
+  } catch (const std::bad_alloc& e) {
+    // Thrust reports every failed device allocation as a bad_alloc, with the CUDA error in its message: only an
+    // allocation that ran out of memory is the case's size; any other CUDA error means the GPU cannot be used.
+    const std::string what = e.what();
+    if (what.find("cudaError") != std::string::npos && what.find("cudaErrorMemoryAllocation") == std::string::npos) {
+      std::cerr << "error: the GPU cannot be used (" << what << "); a CUDA build of blastsim needs an NVIDIA GPU and "
+                   "a driver for its CUDA version (the CPU build runs without one)\n";
+      return 1;
+    }
+    std::cerr << "input error: the case needs more memory than this machine could give (" << what << "); use "
                  "fewer cells (domain.nx, domain.ny) or larger elements (rock.mesh.element_size)\n";
     return 2;
   } catch (const std::exception& e) {
