@@ -15,6 +15,8 @@ mkdir -p "$out"
 summary=$out/summary.txt
 : > "$summary"
 note() { echo "$*" | tee -a "$summary"; }
+mode=${2:-all}
+case "$mode" in all|paper) ;; *) echo "gpu-bench: mode '$mode': use all (default) or paper" >&2; exit 2 ;; esac
 start=$(date +%s)
 deadline=$((start + ${1:-560}))
 left() { echo $((deadline - $(date +%s))); }
@@ -45,7 +47,6 @@ else
   "$bin" --help > /dev/null 2>&1 || { tail -30 "$out/build.log"; exit 1; }
 fi
 
-mode=${2:-all}
 if [ "$mode" = paper ]; then
   t0=$(date +%s)
   timeout "$(cap 60)" "$bin" --profile examples/single_hole/single_hole.toml rock.mesh.mesher=rings output.vtk=false \

@@ -112,6 +112,14 @@ def run_all(args, out):
     return failed
 
 
+def event_time(summary_text, label):
+    """The time [s] summary.txt gives an event ("LABEL: 1.23e-03 s ..."), NOT_REACHED, or None if it has no line."""
+    m = re.search(re.escape(label) + r": (not reached|\S+ s)", summary_text)
+    if m is None:
+        return None
+    return NOT_REACHED if m.group(1) == NOT_REACHED else float(m.group(1).split()[0])
+
+
 def collect(folder):
     """The row of realisations.csv of one run folder: numbers as floats, missing values as None."""
     row = {}
@@ -119,12 +127,8 @@ def collect(folder):
         value = last_row(folder / source).get(column)
         row[key] = float(value) if value not in (None, "") else None
     summary = folder / "summary.txt"
-    m = re.search(r"gas leaves the rock's outer surface: (not reached|\S+ s)", summary.read_text()) \
-        if summary.exists() else None
-    if m is None:
-        row[EJECTION[0]] = None
-    else:
-        row[EJECTION[0]] = NOT_REACHED if m.group(1) == NOT_REACHED else float(m.group(1).split()[0])
+    text = summary.read_text() if summary.exists() else ""
+    row[EJECTION[0]] = event_time(text, "gas leaves the rock's outer surface")
     # The blast gas (a run with the blasthole monitor and a traced gas); a run that stopped early reports the
     # time it reached, and what it did not reach by then as "not reached".
     try:
@@ -135,9 +139,7 @@ def collect(folder):
     for (key, _), radius in zip(BLAST, FRONT_RADII):
         hit = next((float(r["time_s"]) for r in wall if float(r["blast_gas_front_radius_m"]) >= radius), None)
         row[key] = hit if hit is not None else (NOT_REACHED if wall else None)
-    text = summary.read_text() if summary.exists() else ""
-    m = re.search(r"blast gas reaches the rock's outer surface: (not reached|\S+ s)", text)
-    row["blast_arrival_s"] = None if m is None else NOT_REACHED if m.group(1) == NOT_REACHED else float(m.group(1).split()[0])
+    row["blast_arrival_s"] = event_time(text, "blast gas reaches the rock's outer surface")
     m = re.search(r"summary at t = (\S+) s", text)
     row["end_s"] = float(m.group(1)) if m else None
     return row
