@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# CI: the short test tier (every test case not tagged [long], docs/architecture.md "Tests") under
-# AddressSanitizer + UndefinedBehaviorSanitizer (preset "sanitize": -O1, no VTK; UBSan halts on the first
-# report; scripts/ubsan.supp lists the third-party reports it ignores). Builds only what the tests run.
+# CI: the short test tier under AddressSanitizer + UndefinedBehaviorSanitizer (preset "sanitize": -O1, no VTK;
+# UBSan halts on the first report; scripts/ubsan.supp lists the third-party reports it ignores), less the cases
+# tagged [heavy]: many steps of kernels that shorter cases also run (docs/architecture.md "Tests"). Builds only
+# what the tests run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake --preset sanitize >/dev/null
 cmake --build --preset sanitize -j2 --target blastsim test_cip test_fdem test_ibm test_app
-ctest --preset sanitize -LE long
-echo "check-sanitizers: the short tier clean under ASan + UBSan"
+ctest --preset sanitize -LE "long|heavy"
+echo "check-sanitizers: the short tier (less [heavy]) clean under ASan + UBSan"

@@ -23,7 +23,7 @@ using blastsim::testing::fresh_dir;
 namespace {
 const std::string bench = std::string(BLASTSIM_EXAMPLES_DIR) + "/bench_blast/bench_blast.toml";
 
-app::Case read(const std::vector<std::string>& overrides) {
+app::Case read_bench(const std::vector<std::string>& overrides) {
   return app::read_case(app::load_input(bench, overrides));
 }
 
@@ -38,28 +38,28 @@ std::vector<std::string> small_bench(const fs::path& out) {
 }  // namespace
 
 TEST_CASE("Bad charges give one clear error naming the key", "[app][charges][bad]") {
-  const app::Case c = read({});
+  const app::Case c = read_bench({});
   REQUIRE(c.coupling.charges.size() == 3);
   CHECK(c.rock.model.mesh.holes.size() == 3);
   CHECK(c.analysis.holes.size() == 3);
-  CHECK_THROWS_WITH(read({"charge.1.radius=0.012"}), Catch::Contains("charge.1.radius") && Catch::Contains("larger than its hole"));
-  CHECK_THROWS_WITH(read({"charge.2.center=[0.475, 0.2]"}), Catch::Contains("charge.2") && Catch::Contains("not inside the rock"));
-  CHECK_THROWS_WITH(read({"charge.1.center=[0.135, 0.2]"}), Catch::Contains("charge.1") && Catch::Contains("overlaps that of charge.0"));
-  CHECK_THROWS_WITH(read({"charge.1.initiation_time=-1e-5"}), Catch::Contains("charge.1.initiation_time"));
-  CHECK_THROWS_WITH(read({"gas.explosive.preset=\"C4\""}), Catch::Contains("gas.explosive") && Catch::Contains("C4"));
-  CHECK_THROWS_WITH(read({"charge.0.initiation_point=[0.12, 0.2]"}), Catch::Contains("charge.0.initiation_point"));
-  CHECK_THROWS_WITH(read({"charge.0.initiation=\"point\"", "charge.0.initiation_point=[0.2, 0.2]"}),
+  CHECK_THROWS_WITH(read_bench({"charge.1.radius=0.012"}), Catch::Contains("charge.1.radius") && Catch::Contains("larger than its hole"));
+  CHECK_THROWS_WITH(read_bench({"charge.2.center=[0.475, 0.2]"}), Catch::Contains("charge.2") && Catch::Contains("not inside the rock"));
+  CHECK_THROWS_WITH(read_bench({"charge.1.center=[0.135, 0.2]"}), Catch::Contains("charge.1") && Catch::Contains("overlaps that of charge.0"));
+  CHECK_THROWS_WITH(read_bench({"charge.1.initiation_time=-1e-5"}), Catch::Contains("charge.1.initiation_time"));
+  CHECK_THROWS_WITH(read_bench({"gas.explosive.preset=\"C4\""}), Catch::Contains("gas.explosive") && Catch::Contains("C4"));
+  CHECK_THROWS_WITH(read_bench({"charge.0.initiation_point=[0.12, 0.2]"}), Catch::Contains("charge.0.initiation_point"));
+  CHECK_THROWS_WITH(read_bench({"charge.0.initiation=\"point\"", "charge.0.initiation_point=[0.2, 0.2]"}),
                     Catch::Contains("charge.0.initiation_point") && Catch::Contains("outside the charge"));
-  CHECK_THROWS_WITH(read({"rock.mesh.shape=\"rectangle\""}), Catch::Contains("rectangle_with_holes"));
-  CHECK_THROWS_WITH(read({"charge.0.radius=0.001"}), Catch::Contains("charge.0.radius") && Catch::Contains("half a gas cell"));
-  CHECK_THROWS_WITH(read({"gas.transport=\"paper\""}), Catch::Contains("gas.transport"));
+  CHECK_THROWS_WITH(read_bench({"rock.mesh.shape=\"rectangle\""}), Catch::Contains("rectangle_with_holes"));
+  CHECK_THROWS_WITH(read_bench({"charge.0.radius=0.001"}), Catch::Contains("charge.0.radius") && Catch::Contains("half a gas cell"));
+  CHECK_THROWS_WITH(read_bench({"gas.transport=\"paper\""}), Catch::Contains("gas.transport"));
 }
 
 TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a charge fires ends byte for byte",
           "[long][app][charges][restart]") {
   const fs::path a = fresh_dir("bench_a"), b = fresh_dir("bench_b");
   std::ostringstream log;
-  const app::Case ca = read(small_bench(a));
+  const app::Case ca = read_bench(small_bench(a));
   app::run_coupled_case(ca, log);
   const auto cols = csv_columns(a / "charges.csv");
   const std::vector<double>& t = cols.at("time_s");
@@ -88,10 +88,10 @@ TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a
   const long steps = std::lround(csv_columns(a / "coupling_series.csv").at("step").back());
   std::vector<std::string> killed = small_bench(b);
   killed.push_back("time.max_steps=" + std::to_string(steps - 3));
-  app::run_coupled_case(read(killed), log);
+  app::run_coupled_case(read_bench(killed), log);
   app::RunOptions restart;
   restart.restart = true;
-  app::run_coupled_case(read(small_bench(b)), log, restart);
+  app::run_coupled_case(read_bench(small_bench(b)), log, restart);
   int identical = 0;
   for (const char* f : {"charges.csv", "coupling_series.csv", "rock_series.csv", "checkpoint.bin", "summary.txt"}) {
     INFO(f);

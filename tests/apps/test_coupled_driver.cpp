@@ -21,7 +21,7 @@ using blastsim::testing::fresh_dir;
 using blastsim::testing::first_line;
 
 namespace {
-const std::string example = std::string(BLASTSIM_EXAMPLES_DIR) + "/single_hole/single_hole.toml";
+const std::string single_hole_toml = std::string(BLASTSIM_EXAMPLES_DIR) + "/single_hole/single_hole.toml";
 
 //! The bundled single-hole case shrunk: a 150 mm disc with a 20 mm hole on 60 x 60 cells, 30 us (CSV output
 //! only in a build without VTK, such as the sanitizer preset's).
@@ -58,7 +58,7 @@ std::map<std::string, double> last_row(const fs::path& p) {
 
 TEST_CASE("Driver runs a coupled case: gas, rock and coupling files, and the energy budget closes", "[app][coupled]") {
   const fs::path out = fresh_dir("coupled");
-  const app::Case c = app::read_case(app::load_input(example, small_case(out)));
+  const app::Case c = app::read_case(app::load_input(single_hole_toml, small_case(out)));
   std::ostringstream log;
   app::run_coupled_case(c, log);
   INFO(log.str());
@@ -116,7 +116,7 @@ TEST_CASE("A pre-cut crack of the input is broken at the start and carries the b
   {
     fs::create_directories(out);
     std::ofstream f(input);
-    f << file_bytes(example) << "\n[[rock.crack]]\nfrom = [0.02, 0.0]\nto = [0.1, 0.0]\ninitial_aperture = 1e-4\n";
+    f << file_bytes(single_hole_toml) << "\n[[rock.crack]]\nfrom = [0.02, 0.0]\nto = [0.1, 0.0]\ninitial_aperture = 1e-4\n";
   }
   const app::Case c = app::read_case(app::load_input(input.string(), small_case(out)));
   std::ostringstream log;
@@ -133,9 +133,9 @@ TEST_CASE("A pre-cut crack of the input is broken at the start and carries the b
 
 TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupled][bad]") {
   auto read = [](const std::vector<std::string>& overrides) {
-    return app::read_case(app::load_input(example, overrides));
+    return app::read_case(app::load_input(single_hole_toml, overrides));
   };
-  CHECK(app::case_kind(app::load_input(example, {})) == app::CaseKind::coupled);
+  CHECK(app::case_kind(app::load_input(single_hole_toml, {})) == app::CaseKind::coupled);
   // The example's six rock probes and its monitor region, removed by empty arrays of tables.
   CHECK(read({}).probes.rock_points.size() == 6);
   CHECK(read({"probe.rock_point=[]"}).probes.rock_points.empty());
@@ -170,7 +170,7 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(read({"gas.transport=\"paper\"", "gas.region.0.blast_gas=true"}), Catch::Contains("blast_gas"));
   // Pre-cut cracks ([[rock.crack]] tables appended to the example): their ends inside the rock; an initial
   // aperture needs the crack gas.
-  const std::string text = file_bytes(example);
+  const std::string text = file_bytes(single_hole_toml);
   auto with_crack = [&](const std::string& crack) {
     return app::read_case(toml::parse(text + "\n[[rock.crack]]\n" + crack + "\n"));
   };
@@ -212,7 +212,7 @@ TEST_CASE("A coupled run killed and restarted from its checkpoint ends byte for 
       o.push_back("output.interval=2e-5");  // snapshots, and checkpoints, at 0, 20 and 40 us
       o.push_back(crack_gas ? "crack_gas.enabled=true" : "crack_gas.enabled=false");
       o.insert(o.end(), extra.begin(), extra.end());
-      return app::read_case(app::load_input(example, o));
+      return app::read_case(app::load_input(single_hole_toml, o));
     };
     std::ostringstream log;
     app::run_coupled_case(config(a, {}), log);

@@ -29,7 +29,7 @@ using blastsim::testing::fresh_dir;
 using blastsim::testing::first_line;
 
 namespace {
-const std::string example = std::string(BLASTSIM_EXAMPLES_DIR) + "/brazilian_disc/brazilian_disc.toml";
+const std::string brazilian_toml = std::string(BLASTSIM_EXAMPLES_DIR) + "/brazilian_disc/brazilian_disc.toml";
 const std::string uniaxial = std::string(BLASTSIM_EXAMPLES_DIR) + "/uniaxial_compression/uniaxial_compression.toml";
 
 //! Column `name` of a CSV file with a header row.
@@ -53,7 +53,7 @@ std::vector<double> csv_column(const fs::path& file, const std::string& name) {
 }  // namespace
 
 TEST_CASE("Driver runs the bundled uniaxial compression: the platen force peaks at the Mohr-Coulomb strength",
-          "[app][rock][F8]") {
+          "[app][rock][F8][heavy]") {
   const fs::path out = fresh_dir("uniaxial");
   const app::Case c = app::read_case(
       app::load_input(uniaxial, {"output.vtk=false", "output.directory=\"" + out.string() + "\""}));
@@ -70,7 +70,7 @@ TEST_CASE("Driver runs the bundled uniaxial compression: the platen force peaks 
   const double peak = *std::max_element(bottom.begin(), bottom.end()) / width;
   const double phi = c.rock.model.material.friction_angle;
   const double expected = 2 * c.rock.model.material.cohesion * std::cos(phi) / (1 - std::sin(phi));
-  std::printf("Uniaxial example: peak platen stress %.2f MPa vs %.2f MPa (%+.1f %%)\n", peak / 1e6, expected / 1e6,
+  std::printf("Uniaxial brazilian_toml: peak platen stress %.2f MPa vs %.2f MPa (%+.1f %%)\n", peak / 1e6, expected / 1e6,
               100 * (peak / expected - 1));
   CHECK(std::fabs(peak / expected - 1) < 0.20);
   const size_t at = std::max_element(bottom.begin(), bottom.end()) - bottom.begin();
@@ -84,7 +84,7 @@ TEST_CASE("Driver runs the bundled Brazilian disc (coarse) and its .vtu read bac
   const fs::path out = fresh_dir("brazilian");
   // The bundled file with a coarser mesh, run past the peak load (about 0.5 ms).
   const app::Case c = app::read_case(app::load_input(
-      example, {"rock.mesh.element_size=0.008", "time.end=7e-4", "output.interval=3.5e-4",
+      brazilian_toml, {"rock.mesh.element_size=0.008", "time.end=7e-4", "output.interval=3.5e-4",
                 "output.directory=\"" + out.string() + "\""}));
   std::ostringstream log;
   app::run_rock_case(c, log);
@@ -119,7 +119,7 @@ TEST_CASE("Driver runs the bundled Brazilian disc (coarse) and its .vtu read bac
 
 TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][bad]") {
   auto read = [](const std::vector<std::string>& overrides) {
-    return app::read_case(app::load_input(example, overrides));
+    return app::read_case(app::load_input(brazilian_toml, overrides));
   };
   CHECK_THROWS_WITH(read({"rock.youngs_modulus=-1.0"}), Catch::Contains("rock.youngs_modulus"));
   CHECK_THROWS_WITH(read({"rock.mesh.shape=\"hexagon\""}), Catch::Contains("rock.mesh.shape"));
@@ -139,7 +139,7 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
                                    "rock.mesh.hole_radius=0.005"}),
                     Catch::Contains("joint lines are made by Gmsh"));
   // A case with both gas and rock is a coupled case.
-  toml::table both = app::load_input(example, {});
+  toml::table both = app::load_input(brazilian_toml, {});
   CHECK(app::case_kind(both) == app::CaseKind::rock);
   both.insert("gas", toml::table{});
   CHECK(app::case_kind(both) == app::CaseKind::coupled);

@@ -41,7 +41,7 @@ Drift closed_box_drift(cip::Transport transport) {
 
 }  // namespace
 
-TEST_CASE("G3 closed box: mass and energy over 1000 steps", "[cip][G3]") {
+TEST_CASE("G3 closed box: mass and energy over 1000 steps", "[cip][G3][heavy]") {
   const Drift cons = closed_box_drift(cip::Transport::conservative);
   const Drift paper = closed_box_drift(cip::Transport::paper);
   std::printf("G3 closed box, 1000 steps: conservative transport mass drift %.1e, energy drift %.1e; paper's "
@@ -54,7 +54,7 @@ TEST_CASE("G3 closed box: mass and energy over 1000 steps", "[cip][G3]") {
   CHECK(paper.mass <= 0.005);
 }
 
-TEST_CASE("G5 outflow boundary: an acoustic pulse leaves with at most 2 % reflection", "[cip][G5]") {
+TEST_CASE("G5 outflow boundary: an acoustic pulse leaves with at most 2 % reflection", "[cip][G5][heavy]") {
   // Right-running acoustic pulse on a strip: p' = rho c u' (simple wave), amplitude 1e-3 of p0.
   const double gamma = 1.4, rho0 = 1.0, p0 = 1.0, c = std::sqrt(gamma * p0 / rho0), amp = 1e-3;
   const int n = 400;
@@ -76,7 +76,7 @@ TEST_CASE("G5 outflow boundary: an acoustic pulse leaves with at most 2 % reflec
   CHECK(residual <= 0.02 * amp * p0);
 }
 
-TEST_CASE("Conservation monitor: the balance with the boundary outflow closes while gas leaves", "[cip][monitor]") {
+TEST_CASE("Conservation monitor: the balance with the boundary outflow closes while gas leaves", "[cip][monitor][heavy]") {
   // The paper's blasthole gas on a small grid, run until about a quarter of the mass has left.
   const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);
   cip::GasSolver s(cip::GasGrid::from_box(100, 100, -0.25, 0.25, -0.25, 0.25), eos);

@@ -5,13 +5,14 @@
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/core/backend.hpp"
 #include "catch.hpp"
+#include "same_bytes.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <vector>
 
 using namespace blastsim;
+using blastsim::test::same_bytes;
 
 namespace {
 
@@ -52,11 +53,6 @@ Run run(const Case& c, bool fuse, int steps) {
   r.per_step.host_waits = (after.host_waits - before.host_waits) / steps;
   REQUIRE((after.launches - before.launches) % steps == 0);  // every step launches the same kernels
   return r;
-}
-
-//! Bytes of two arrays equal (NaN-safe, -0 vs +0 told apart).
-bool same_bytes(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 double largest_change(const std::vector<double>& now, double initial_min, double initial_max) {

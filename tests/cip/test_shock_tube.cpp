@@ -23,7 +23,7 @@ double sod_l1(int n, Axis axis) {
 
 }  // namespace
 
-TEST_CASE("G1 Sod shock tube: density L1 error against Toro's exact solution", "[cip][G1]") {
+TEST_CASE("G1 Sod shock tube: density L1 error against Toro's exact solution", "[cip][G1][heavy]") {
   // Toro's star values (docs/validation.md) check the exact solver itself first.
   const ExactRiemann exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4);
   CHECK_THAT(exact.p_star(), WithinAbs(0.30313, 5e-5));
@@ -92,7 +92,7 @@ TEST_CASE("G6 the paper's seed states (Table 1): positive, finite, exact shock s
 }
 
 TEST_CASE("Mask interface: a wall placed through the immersed-boundary input reflects a shock exactly",
-          "[cip][mask]") {
+          "[cip][mask][heavy]") {
   // Sod's states; a solid block fills x > 0.75 through the mask (inactive cells, faces held at u = 0).
   const Primitive L{1.0, 0.0, 1.0}, R{0.125, 0.0, 0.1};
   const double wall = 0.75;

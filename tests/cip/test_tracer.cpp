@@ -4,9 +4,9 @@
 //! contact of a Riemann problem.
 #include "catch.hpp"
 #include "gas_cases.hpp"
+#include "same_bytes.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <numeric>
 
 using namespace blastsim;
@@ -28,10 +28,6 @@ cip::GasSolver traced_sod(int n, bool traced, cip::BoundaryKind ends) {
     return cip::GasPoint{rho, p / (0.4 * rho), 0.0, 0.0, 0.0, traced && left ? 1.0 : 0.0};
   });
   return s;
-}
-
-bool same_bytes(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
 }  // namespace

@@ -152,7 +152,7 @@ TEST_CASE("G11 shock tubes of ANFO products into air against the exact solution"
   }
 }
 
-TEST_CASE("G11 products into thin air at a density ratio of 1e4: positive and finite", "[cip][G11]") {
+TEST_CASE("G11 products into thin air at a density ratio of 1e4: positive and finite", "[cip][G11][heavy]") {
   const cip::GasMaterials mat = anfo_and_air();
   const Primitive L{800.0, 0.0, 1e10}, R{0.08, 0.0, 0.08 * 0.4 * 2.09e5};
   const MieGruneisenRiemann exact(mat.products, L, mat.air, R);

@@ -63,7 +63,7 @@ TEST_CASE("V1: a plane P wave in the confined bar of F1 gives PPV = v0 at a prob
   }
 }
 
-TEST_CASE("V2: PPV against distance from a pressurised hole follows Selberg's cylindrical-cavity solution", "[fdem][V2]") {
+TEST_CASE("V2: PPV against distance from a pressurised hole follows Selberg's cylindrical-cavity solution", "[fdem][V2][heavy]") {
   const double R = 0.5, a = 0.05, h = 0.0075, p0 = 10e6, rise = 20e-6;
   const FdemTopology topo = build_topology(ring_disc_with_hole(0, 0, R, a, h).mesh);
   const RockMaterial rock = unbreakable_rock();

@@ -148,7 +148,7 @@ TEST_CASE("I1: uniform gas around a closed block: edge pressures p, net force ze
   CHECK(e.external_work > 0);
 }
 
-TEST_CASE("I2: a shock hitting an immersed fixed rock block reflects with the exact pressure", "[ibm][I2]") {
+TEST_CASE("I2: a shock hitting an immersed fixed rock block reflects with the exact pressure", "[ibm][I2][heavy]") {
   // Sod's tube (dimensionless states) along x on 400 x 3 cells; a rock block held fixed (all nodes at rest)
   // covers x >= 0.75 through the coupler: its faces are the wall.
   using blastsim::test::ExactRiemann;
@@ -199,7 +199,7 @@ TEST_CASE("I2: a shock hitting an immersed fixed rock block reflects with the ex
 }
 
 #if defined(BLASTSIM_TEST_HAVE_GMSH)
-TEST_CASE("I3: gas sealed in a hole of intact rock keeps its mass while the rock vibrates", "[ibm][I3]") {
+TEST_CASE("I3: gas sealed in a hole of intact rock keeps its mass while the rock vibrates", "[ibm][I3][heavy]") {
   const double R = 0.1, a = 0.03;  // disc and hole radii [m]
   cip::GasSolverOptions opt;
   cip::GasSolver gas(cip::GasGrid::from_box(80, 80, -0.12, 0.12, -0.12, 0.12), eos, opt);
@@ -288,7 +288,7 @@ TEST_CASE("Coupled energy: gas energy lost by a pressurised hole equals the work
   }
 }
 
-TEST_CASE("Rock subcycling: the energy budget closes and the rock responds as with one dt", "[ibm][energy][subcycling]") {
+TEST_CASE("Rock subcycling: the energy budget closes and the rock responds as with one dt", "[ibm][energy][subcycling][heavy]") {
   // The energy case above (80 x 80 cells, 40 us) run twice: one dt for both solvers, and gas steps at the
   // gas's Courant limit with the rock subcycling. Bounds: the budget within 5 % (issue #4's bound), the work on
   // the rock and the rock's kinetic + strain energy within 2 % of the single-dt run's.

@@ -180,7 +180,7 @@ TEST_CASE("C1 crack channel: Sod's shock tube along a straight channel against t
   CHECK_THAT(flipped, WithinAbs(e400, 1e-12));  // segment orientation does not matter
 }
 
-TEST_CASE("C2 crack channel: steady friction flow between two reservoirs against Fanno flow", "[ibm][crack][C2]") {
+TEST_CASE("C2 crack channel: steady friction flow between two reservoirs against Fanno flow", "[ibm][crack][C2][heavy]") {
   const double rho0 = 10.0, p0 = 1e6, f = 0.02;  // L = 0.1 m, w = 0.5 mm: f L / D_h = 0.02 x 0.1 / 1e-3 = 2
   for (double pb : {0.7e6, 0.5e6, 0.2e6}) {
     const FannoResult ref = fanno_mass_flux(rho0, p0, pb, 2.0, 1.4);

@@ -14,7 +14,7 @@
 
 using namespace blastsim;
 
-TEST_CASE("I6 ANFO products in a hole of elastic rock: products mass kept, budget closed", "[ibm][I6]") {
+TEST_CASE("I6 ANFO products in a hole of elastic rock: products mass kept, budget closed", "[ibm][I6][heavy]") {
   cip::GasMaterials mat;
   mat.air = cip::EquationOfState::ideal(1.4);
   mat.products = cip::EquationOfState::jwl_products(cip::EquationOfState::jwl_preset("ANFO").p);
