@@ -126,6 +126,34 @@ void read_rock(TableReader& root, Case& c) {
     k.finish();
     m.cracks.push_back(cut);
   }
+  if (rock.has("heterogeneity")) {
+    TableReader h = rock.table("heterogeneity");
+    fdem::StrengthHeterogeneity het;
+    const std::string dist = h.text("distribution", {"weibull", "lognormal"}, std::string("weibull"));
+    if (dist == "weibull") {
+      het.distribution = fdem::StrengthDistribution::weibull;
+      het.weibull_modulus = h.number("modulus", "", Range{1.0, 1000.0, false, false});
+      if (h.has("cov"))
+        throw InputError(h.key_path("cov") + ": the log-normal's coefficient of variation; a Weibull distribution "
+                         "takes modulus (or set distribution = \"lognormal\")");
+    } else {
+      het.distribution = fdem::StrengthDistribution::lognormal;
+      het.cov = h.number("cov", "", Range{0.0, 2.0, true, false});
+      if (h.has("modulus"))
+        throw InputError(h.key_path("modulus") + ": the Weibull modulus; a log-normal distribution takes cov (or set "
+                         "distribution = \"weibull\")");
+    }
+    het.seed = static_cast<std::uint64_t>(h.integer("seed", "", 0, 1));
+    het.tensile_strength = h.boolean("tensile_strength", true);
+    het.cohesion = h.boolean("cohesion", true);
+    het.fracture_energy = h.boolean("fracture_energy", true);
+    h.finish();
+    if (!het.tensile_strength && !het.cohesion && !het.fracture_energy)
+      throw InputError(h.path() + ": tensile_strength, cohesion and fracture_energy are all false; set one to true "
+                       "or remove the table");
+    het.validate();
+    m.heterogeneity = het;
+  }
   rock.finish();
   m.material.validate();
   m.options.validate();

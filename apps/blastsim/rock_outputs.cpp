@@ -122,15 +122,22 @@ void RockOutputs::snapshot() {
   const std::string rock_name = fmt::format("rock_{:06d}.vtu", index);
   const std::string joints_name = fmt::format("joints_{:06d}.vtu", index);
   fdem::write_rock_vtu((dir_ / rock_name).string(), s, cells);
-  std::vector<fdem::JointField> gas;
+  std::vector<fdem::JointField> fields;
   if (crack_) {
     ibm::CrackSegmentFields f = crack_->segment_fields();
-    gas = {{"aperture", std::move(f.aperture)},
+    fields = {{"aperture", std::move(f.aperture)},
            {"gas_pressure", std::move(f.gas_pressure)},
            {"gas_mass", std::move(f.gas_mass)},
            {"blast_gas_fraction", std::move(f.blast_gas_fraction)}};
   }
-  fdem::write_joints_vtu((dir_ / joints_name).string(), s, gas);
+  if (c_.rock.model.heterogeneity) {  // the drawn strengths (uniform rock leaves them out: the same bytes as before)
+    const std::vector<fdem::JointStrength> js = solver_.joint_strengths();
+    std::vector<double> ft(js.size()), coh(js.size());
+    for (std::size_t j = 0; j < js.size(); ++j) ft[j] = js[j].tensile_strength, coh[j] = js[j].cohesion;
+    fields.push_back({"tensile_strength", std::move(ft)});
+    fields.push_back({"cohesion", std::move(coh)});
+  }
+  fdem::write_joints_vtu((dir_ / joints_name).string(), s, fields);
   rock_pvd_.add(solver_.time(), rock_name);
   joints_pvd_.add(solver_.time(), joints_name);
 }

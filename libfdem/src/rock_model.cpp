@@ -156,7 +156,10 @@ RockModel build_rock_model(const RockModelSpec& spec) {
     for (const PreCutCrack& c : spec.cracks) mesh.joint_lines.push_back(c.segment);
   m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
-  m.solver = std::make_unique<RockSolver>(m.topology, spec.material, spec.options);
+  const std::vector<JointProperties> joints =
+      spec.heterogeneity ? heterogeneous_joints(spec.material, *spec.heterogeneity, static_cast<int>(m.topology.joints.size()))
+                         : std::vector<JointProperties>{};
+  m.solver = std::make_unique<RockSolver>(m.topology, spec.material, spec.options, joints);
   RockSolver& solver = *m.solver;
   const FdemTopology& topo = m.topology;
   // Initial velocities first: prescribed velocities then override them on their nodes.

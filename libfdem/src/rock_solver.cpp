@@ -47,7 +47,8 @@ double length(const std::array<double, 2>& a, const std::array<double, 2>& b) {
 
 }  // namespace
 
-RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, const RockOptions& options)
+RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, const RockOptions& options,
+                       const std::vector<JointProperties>& joint_properties)
     : material_(material), options_(options), a_(std::make_unique<detail::RockArrays>()) {
   material_.validate();
   options_.validate();
@@ -108,6 +109,17 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   std::vector<int> slot_neighbour(3 * triangles_, -1), slot_joint(3 * triangles_, -1);
   std::vector<std::uint8_t> exposed(3 * triangles_, 0);
   for (const BoundaryEdge& b : boundary_edges_) exposed[b.n0] = kEdgeBoundary;
+  if (!joint_properties.empty() && joint_properties.size() != static_cast<std::size_t>(joints_))
+    throw InputError("RockSolver: " + std::to_string(joint_properties.size()) + " joint properties for " +
+                     std::to_string(joints_) + " joints");
+  for (std::size_t j = 0; j < joint_properties.size(); ++j) {
+    const JointProperties& q = joint_properties[j];
+    if (!(q.tensile_strength > 0) || !(q.cohesion > 0) || !(q.fracture_energy_mode1 > 0) ||
+        !(q.fracture_energy_mode2 > 0) || !(q.friction_angle >= 0) || !std::isfinite(q.tensile_strength + q.cohesion +
+        q.friction_angle + q.fracture_energy_mode1 + q.fracture_energy_mode2))
+      throw InputError("joint " + std::to_string(j) + ": strengths and fracture energies must be positive and finite");
+  }
+  const JointProperties uniform = joint_properties_of(material_);
   std::vector<JointStrength> strength(joints_);
   std::vector<double> joint_length(joints_);
   const double p_joint = options_.joint_penalty_factor * E;
@@ -117,14 +129,21 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
     slot_neighbour[J.b0] = J.triangle_a, slot_joint[J.b0] = j;
     joint_nodes_host_.push_back({J.a0, J.a1, J.b0, J.b1});
     const double h = length(topo.node_positions[J.a0], topo.node_positions[J.a1]);
+    const JointProperties& q = joint_properties.empty() ? uniform : joint_properties[j];
     JointStrength& s = strength[j];
-    s.tensile_strength = material_.tensile_strength;
-    s.cohesion = material_.cohesion;
-    s.tan_friction = std::tan(material_.friction_angle);
-    s.peak_opening = 2 * h * material_.tensile_strength / p_joint;
-    s.peak_slip = 2 * h * material_.cohesion / p_joint;
-    s.opening_softening = softening_length(material_.fracture_energy_mode1, material_.tensile_strength, s.peak_opening);
-    s.slip_softening = softening_length(material_.fracture_energy_mode2, material_.cohesion, s.peak_slip);
+    s.tensile_strength = q.tensile_strength;
+    s.cohesion = q.cohesion;
+    s.tan_friction = std::tan(q.friction_angle);
+    s.peak_opening = 2 * h * q.tensile_strength / p_joint;
+    s.peak_slip = 2 * h * q.cohesion / p_joint;
+    try {
+      s.opening_softening = softening_length(q.fracture_energy_mode1, q.tensile_strength, s.peak_opening);
+      s.slip_softening = softening_length(q.fracture_energy_mode2, q.cohesion, s.peak_slip);
+    } catch (const InputError& e) {
+      if (joint_properties.empty()) throw;
+      throw InputError("joint " + std::to_string(j) + " (its own strength, f_t = " + std::to_string(q.tensile_strength) +
+                       " Pa): " + e.what());
+    }
     joint_length[j] = h;
   }
   copy_from_host(a.edge_params.neighbour, slot_neighbour), copy_from_host(a.edge_params.joint, slot_joint);
@@ -144,6 +163,8 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.speed_peak.assign(3 * triangles_, 0.0);
   if (options_.contact) rebuild_contact_grid();
 }
+
+std::vector<JointStrength> RockSolver::joint_strengths() const { return to_host(a_->joint_params.strength); }
 
 RockSolver::~RockSolver() = default;
 RockSolver::RockSolver(RockSolver&&) noexcept = default;

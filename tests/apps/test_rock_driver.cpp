@@ -138,6 +138,25 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   CHECK_THROWS_WITH(read_uniaxial({"rock.mesh.shape=\"rectangle_with_hole\"", "rock.mesh.center=[0.025, 0.05]",
                                    "rock.mesh.hole_radius=0.005"}),
                     Catch::Contains("joint lines are made by Gmsh"));
+  // Heterogeneous strength: a modulus in [1, 1000], a known distribution, each distribution's own parameter,
+  // at least one property scattered.
+  CHECK_THROWS_WITH(read({"rock.heterogeneity.modulus=0.5"}), Catch::Contains("rock.heterogeneity.modulus"));
+  CHECK_THROWS_WITH(read({"rock.heterogeneity.distribution=\"gauss\"", "rock.heterogeneity.modulus=4"}),
+                    Catch::Contains("rock.heterogeneity.distribution"));
+  CHECK_THROWS_WITH(read({"rock.heterogeneity.distribution=\"lognormal\"", "rock.heterogeneity.cov=0.3",
+                          "rock.heterogeneity.modulus=4"}),
+                    Catch::Contains("rock.heterogeneity.modulus"));
+  CHECK_THROWS_WITH(read({"rock.heterogeneity.distribution=\"lognormal\""}), Catch::Contains("rock.heterogeneity.cov"));
+  CHECK_THROWS_WITH(read({"rock.heterogeneity.modulus=4", "rock.heterogeneity.tensile_strength=false",
+                          "rock.heterogeneity.cohesion=false", "rock.heterogeneity.fracture_energy=false"}),
+                    Catch::Contains("rock.heterogeneity"));
+  CHECK_THROWS_WITH(read({"rock.heterogeneity.modulus=4", "rock.heterogeneity.seed=-1"}),
+                    Catch::Contains("rock.heterogeneity.seed"));
+  const app::Case het = read({"rock.heterogeneity.modulus=4", "rock.heterogeneity.seed=9"});
+  REQUIRE(het.rock.model.heterogeneity.has_value());
+  CHECK(het.rock.model.heterogeneity->weibull_modulus == 4.0);
+  CHECK(het.rock.model.heterogeneity->seed == 9u);
+  CHECK_FALSE(read({}).rock.model.heterogeneity.has_value());
   // A case with both gas and rock is a coupled case.
   toml::table both = app::load_input(brazilian_toml, {});
   CHECK(app::case_kind(both) == app::CaseKind::rock);

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,8 @@ struct RockModelSpec {
   //! Cracks broken before the first step; a built shape follows their segments (as joint lines), a mesh file
   //! must have edges along them.
   std::vector<PreCutCrack> cracks;
+  //! Heterogeneous joint strength (heterogeneity.hpp); absent: every joint has the material's.
+  std::optional<StrengthHeterogeneity> heterogeneity;
 };
 
 //! The mesh, its FDEM topology and the solver, with the nodes of each velocity load.

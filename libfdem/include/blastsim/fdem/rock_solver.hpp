@@ -9,6 +9,7 @@
 //! The arrays live behind the class (rock_fields.hpp lists them), so this header needs no backend headers.
 #pragma once
 
+#include "blastsim/fdem/heterogeneity.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
@@ -34,7 +35,11 @@ struct RockArrays;
 
 class RockSolver {
  public:
-  RockSolver(const FdemTopology& topology, const RockMaterial& material, const RockOptions& options);
+  //! `joints`, when not empty, gives each joint of the topology its own strength and fracture energies
+  //! (heterogeneous rock: heterogeneous_joints()); empty: every joint has the material's. Throws InputError on
+  //! a size other than the topology's joint count or a joint whose properties the joint law cannot take.
+  RockSolver(const FdemTopology& topology, const RockMaterial& material, const RockOptions& options,
+             const std::vector<JointProperties>& joints = {});
   ~RockSolver();
   RockSolver(RockSolver&&) noexcept;
   RockSolver& operator=(RockSolver&&) noexcept;
@@ -137,6 +142,8 @@ class RockSolver {
   //! the same labels on every backend and thread count). Costs a few sweeps over the triangles and a sync
   //! per sweep.
   std::vector<int> fragment_labels() const;
+  //! Each joint's strength parameters as the joint law uses them (host copy; heterogeneous rock shows its draw).
+  std::vector<JointStrength> joint_strengths() const;
   //! Sets velocity probes at points [m] of the initial mesh (replacing any earlier set; their peaks start at
   //! zero). Each follows the material point (the triangle holding it, by barycentric weights); every step()
   //! then updates its peak particle velocity on the device, up to the time `until` [s] of the probe (empty:
