@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Run one blastsim case N times on perturbed meshes and gather the spread of its main results.
 
-Usage: scripts/realisations.py CASE.toml N [--jitter F] [--out DIR] [--blastsim PATH] [--resume]
-                               [--collect-only] [section.key=value ...]
+Usage: scripts/realisations.py CASE.toml N [--jitter F] [--strength-seed] [--out DIR] [--blastsim PATH]
+                               [--resume] [--collect-only] [section.key=value ...]
 
 Realisation K (K = 1..N) runs, one after another,
     blastsim -q CASE.toml rock.mesh.jitter=F rock.mesh.seed=K output.directory=DIR/seed_K [section.key=value ...]
-with F = 0.03 unless --jitter says otherwise; DIR defaults to realisations_<case stem> in the current directory
+with F = 0.03 unless --jitter says otherwise (--jitter 0 keeps the mesh; --strength-seed also sets
+rock.heterogeneity.seed=K, for a case with a [rock.heterogeneity] table: docs/input.md); DIR defaults to realisations_<case stem> in the current directory
 and blastsim to build-cpu/apps/blastsim/blastsim of this repository. The driver's own output goes to
 DIR/seed_K/blastsim.log. --resume skips a seed whose summary.txt says the run reached time.end (read from the
 overrides or the case file); --collect-only runs nothing and rebuilds the tables from the folders there.
@@ -101,6 +102,8 @@ def run_all(args, out):
         folder.mkdir(parents=True, exist_ok=True)
         command = [str(blastsim), "-q", args.case, f"rock.mesh.jitter={args.jitter}", f"rock.mesh.seed={k}",
                    f"output.directory={folder.resolve()}", *args.overrides]
+        if args.strength_seed:
+            command.append(f"rock.heterogeneity.seed={k}")
         print(f"[{k}/{args.n}] seed {k}: running into {folder} ...", end=" ", flush=True)
         start = time.monotonic()
         with open(folder / "blastsim.log", "w") as log:
@@ -204,6 +207,8 @@ def main():
     p.add_argument("n", type=int, help="number of realisations (seeds 1..N)")
     p.add_argument("overrides", nargs="*", help="extra section.key=value overrides for every run")
     p.add_argument("--jitter", type=float, default=0.03, help="rock.mesh.jitter of every run (default 0.03)")
+    p.add_argument("--strength-seed", action="store_true",
+                   help="also draw the joint strengths afresh: rock.heterogeneity.seed=K in realisation K")
     p.add_argument("--out", help="folder of the runs (default realisations_<case stem>)")
     p.add_argument("--blastsim", help="the driver (default build-cpu/apps/blastsim/blastsim of this repository)")
     p.add_argument("--resume", action="store_true", help="skip seeds whose run already reached time.end")
