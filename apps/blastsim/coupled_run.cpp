@@ -487,6 +487,9 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
     for (std::size_t n = 0; n < model.crack_joints.size(); ++n)
       if (c.rock.model.cracks[n].initial_aperture > 0)
         crack.set_initial_apertures(model.crack_joints[n], c.rock.model.cracks[n].initial_aperture);
+    for (std::size_t n = 0; n < model.set_joints.size(); ++n)  // open joint sets stand open like pre-cut cracks
+      if (c.rock.model.joint_sets[n].open && c.rock.model.joint_sets[n].initial_aperture > 0)
+        crack.set_initial_apertures(model.set_joints[n], c.rock.model.joint_sets[n].initial_aperture);
   }
   if (!k.charges.empty()) {
     coupler.set_charges(k.charges, k.charge_products);

@@ -29,6 +29,10 @@ void read_coupling(TableReader& root, Case& c) {
     if (cut.initial_aperture > 0 && !k.crack_gas)
       throw InputError(fmt::format("{}.initial_aperture = {:g} m: an initial aperture is the crack gas's (give "
                                    "[crack_gas] enabled = true, or leave it 0)", cut.label, cut.initial_aperture));
+  for (const fdem::JointSetSpec& set : c.rock.model.joint_sets)
+    if (set.initial_aperture > 0 && !k.crack_gas)
+      throw InputError(fmt::format("{}.initial_aperture = {:g} m: an initial aperture is the crack gas's (give "
+                                   "[crack_gas] enabled = true, or leave it 0)", set.label, set.initial_aperture));
 }
 
 }  // namespace blastsim::app

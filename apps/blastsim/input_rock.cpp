@@ -126,6 +126,51 @@ void read_rock(TableReader& root, Case& c) {
     k.finish();
     m.cracks.push_back(cut);
   }
+  for (TableReader& t : rock.table_array("joint_set")) {
+    fdem::JointSetSpec set;
+    set.label = t.path();
+    set.angle = t.number("angle", "deg", Range{0.0, 180.0, false, true}) * M_PI / 180;
+    set.spacing = t.number("spacing", "m", Range::at_least(m.mesh.element_size));
+    set.trace_length = t.number("trace_length", "m", Range::non_negative(), 0.0);
+    set.persistence = t.number("persistence", "", Range::half_open(0.0, 1.0), 1.0);
+    if (set.persistence < 1 && set.trace_length == 0)
+      throw InputError(t.key_path("trace_length") + ": needed when persistence < 1 (the traces' length)");
+    if (set.trace_length > 0 && set.trace_length < m.mesh.element_size)
+      throw InputError(fmt::format("{} = {:g} m: shorter than rock.mesh.element_size ({:g} m)", t.key_path("trace_length"),
+                                   set.trace_length, m.mesh.element_size));
+    set.offset = t.number("offset", "m", Range::any(), 0.0);
+    set.seed = t.integer("seed", "", 0, 1);
+    set.open = t.boolean("open", false);
+    const fdem::JointProperties rock_joints = fdem::joint_properties_of(m.material);
+    if (set.open) {
+      set.initial_aperture = t.number("initial_aperture", "m", Range::non_negative(), 0.0);
+      for (const char* key : {"tensile_strength", "cohesion", "friction_angle", "fracture_energy_mode1",
+                              "fracture_energy_mode2"})
+        if (t.has(key))
+          throw InputError(t.key_path(key) + ": an open set has no strength (it starts broken); remove the key or "
+                           "set open = false");
+      set.properties = rock_joints;
+    } else {
+      if (t.has("initial_aperture"))
+        throw InputError(t.key_path("initial_aperture") + ": only for an open set (open = true)");
+      fdem::JointProperties& q = set.properties;
+      q.tensile_strength = t.number("tensile_strength", "Pa", Range::positive(), rock_joints.tensile_strength);
+      q.cohesion = t.number("cohesion", "Pa", Range::positive(), rock_joints.cohesion);
+      q.friction_angle = t.number("friction_angle", "deg", Range{0.0, 90.0, false, true},
+                                  rock_joints.friction_angle * 180 / M_PI) * M_PI / 180;
+      q.fracture_energy_mode1 =
+          t.number("fracture_energy_mode1", "J/m2", Range::positive(), rock_joints.fracture_energy_mode1);
+      q.fracture_energy_mode2 =
+          t.number("fracture_energy_mode2", "J/m2", Range::positive(), rock_joints.fracture_energy_mode2);
+    }
+    t.finish();
+    if (m.mesh.shape == fdem::MeshShape::file)
+      throw InputError(t.path() + ": joint sets need a built mesh shape (a mesh file has its own lines)");
+    const std::vector<fdem::Segment> traces = fdem::joint_set_traces(set, m.mesh, 0.5 * m.mesh.element_size);
+    for (std::size_t k = 0; k < traces.size(); ++k)
+      fdem::check_mesh_segment(m.mesh, traces[k], fmt::format("{} (trace {})", t.path(), k));
+    m.joint_sets.push_back(set);
+  }
   if (rock.has("heterogeneity")) {
     TableReader h = rock.table("heterogeneity");
     fdem::StrengthHeterogeneity het;

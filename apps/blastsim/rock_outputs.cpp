@@ -65,7 +65,8 @@ double rock_time_step(const Case& c, const fdem::RockSolver& solver) {
 }
 
 RockOutputs::RockOutputs(const Case& c, const fdem::RockModel& model, bool resume)
-    : c_(c), solver_(*model.solver), velocity_nodes_(model.velocity_nodes), dir_(make_output_dir(c.output.directory)),
+    : c_(c), solver_(*model.solver), velocity_nodes_(model.velocity_nodes),
+      joint_set_of_(model.joint_set_of), dir_(make_output_dir(c.output.directory)),
       rock_pvd_((dir_ / "rock.pvd").string()), joints_pvd_((dir_ / "joints.pvd").string()),
       series_((dir_ / "rock_series.csv").string(),
               csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) {
@@ -130,7 +131,9 @@ void RockOutputs::snapshot() {
            {"gas_mass", std::move(f.gas_mass)},
            {"blast_gas_fraction", std::move(f.blast_gas_fraction)}};
   }
-  if (c_.rock.model.heterogeneity) {  // the drawn strengths (uniform rock leaves them out: the same bytes as before)
+  if (!joint_set_of_.empty())  // the natural joints' set (-1: rock); runs without sets leave it out
+    fields.push_back({"joint_set", std::vector<double>(joint_set_of_.begin(), joint_set_of_.end())});
+  if (c_.rock.model.heterogeneity || !joint_set_of_.empty()) {  // each joint's strength (uniform rock: left out)
     const std::vector<fdem::JointStrength> js = solver_.joint_strengths();
     std::vector<double> ft(js.size()), coh(js.size());
     for (std::size_t j = 0; j < js.size(); ++j) ft[j] = js[j].tensile_strength, coh[j] = js[j].cohesion;

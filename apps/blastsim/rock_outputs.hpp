@@ -63,6 +63,7 @@ class RockOutputs {
   const Case& c_;
   fdem::RockSolver& solver_;
   const std::vector<std::vector<int>>& velocity_nodes_;
+  const std::vector<int>& joint_set_of_;  //!< the set of each joint (empty without joint sets)
   const ibm::CrackGas* crack_ = nullptr;
   std::filesystem::path dir_;
   PvdSeries rock_pvd_, joints_pvd_;

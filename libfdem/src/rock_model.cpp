@@ -154,6 +154,11 @@ RockModel build_rock_model(const RockModelSpec& spec) {
   MeshSpec mesh = spec.mesh;
   if (mesh.shape != MeshShape::file)  // a built shape follows the pre-cut cracks
     for (const PreCutCrack& c : spec.cracks) mesh.joint_lines.push_back(c.segment);
+  std::vector<std::vector<Segment>> traces;  // of each joint set
+  for (const JointSetSpec& set : spec.joint_sets) {
+    traces.push_back(joint_set_traces(set, spec.mesh, 0.5 * spec.mesh.element_size));
+    for (const Segment& t : traces.back()) mesh.joint_lines.push_back(t);
+  }
   m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
   const std::vector<JointProperties> joints =
@@ -209,6 +214,23 @@ RockModel build_rock_model(const RockModelSpec& spec) {
                        "] m (a mesh file needs edges along it; a built shape needs it inside the rock)");
     solver.break_joints(joints);
     m.crack_joints.push_back(std::move(joints));
+  }
+  if (!spec.joint_sets.empty()) m.joint_set_of.assign(topo.joints.size(), -1);
+  for (std::size_t k = 0; k < spec.joint_sets.size(); ++k) {
+    const JointSetSpec& set = spec.joint_sets[k];
+    std::vector<int> joints;
+    for (const Segment& t : traces[k]) {
+      const double tolerance = 1e-6 * std::max(spec.mesh.element_size, std::hypot(t.b[0] - t.a[0], t.b[1] - t.a[1]));
+      for (int j : solver.joints_on_segment(t.a[0], t.a[1], t.b[0], t.b[1], tolerance)) {
+        joints.push_back(j);
+        m.joint_set_of[j] = static_cast<int>(k);  // a later set wins where two meet
+      }
+    }
+    if (set.open)
+      solver.break_joints(joints);
+    else
+      solver.set_joint_properties(joints, set.properties);
+    m.set_joints.push_back(std::move(joints));
   }
   std::vector<std::array<double, 2>> points;
   std::vector<double> until;

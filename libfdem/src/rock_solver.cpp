@@ -45,6 +45,23 @@ double length(const std::array<double, 2>& a, const std::array<double, 2>& b) {
   return std::hypot(b[0] - a[0], b[1] - a[1]);
 }
 
+//! The joint law's parameters of a joint of length h [m] with properties q at joint penalty p [Pa].
+JointStrength joint_strength(const JointProperties& q, double h, double p) {
+  if (!(q.tensile_strength > 0) || !(q.cohesion > 0) || !(q.fracture_energy_mode1 > 0) ||
+      !(q.fracture_energy_mode2 > 0) || !(q.friction_angle >= 0 && q.friction_angle < M_PI / 2) ||
+      !std::isfinite(q.tensile_strength + q.cohesion + q.fracture_energy_mode1 + q.fracture_energy_mode2))
+    throw InputError("strengths and fracture energies must be positive and finite, the friction angle in [0, 90) deg");
+  JointStrength s;
+  s.tensile_strength = q.tensile_strength;
+  s.cohesion = q.cohesion;
+  s.tan_friction = std::tan(q.friction_angle);
+  s.peak_opening = 2 * h * q.tensile_strength / p;
+  s.peak_slip = 2 * h * q.cohesion / p;
+  s.opening_softening = softening_length(q.fracture_energy_mode1, q.tensile_strength, s.peak_opening);
+  s.slip_softening = softening_length(q.fracture_energy_mode2, q.cohesion, s.peak_slip);
+  return s;
+}
+
 }  // namespace
 
 RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, const RockOptions& options,
@@ -112,13 +129,6 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   if (!joint_properties.empty() && joint_properties.size() != static_cast<std::size_t>(joints_))
     throw InputError("RockSolver: " + std::to_string(joint_properties.size()) + " joint properties for " +
                      std::to_string(joints_) + " joints");
-  for (std::size_t j = 0; j < joint_properties.size(); ++j) {
-    const JointProperties& q = joint_properties[j];
-    if (!(q.tensile_strength > 0) || !(q.cohesion > 0) || !(q.fracture_energy_mode1 > 0) ||
-        !(q.fracture_energy_mode2 > 0) || !(q.friction_angle >= 0) || !std::isfinite(q.tensile_strength + q.cohesion +
-        q.friction_angle + q.fracture_energy_mode1 + q.fracture_energy_mode2))
-      throw InputError("joint " + std::to_string(j) + ": strengths and fracture energies must be positive and finite");
-  }
   const JointProperties uniform = joint_properties_of(material_);
   std::vector<JointStrength> strength(joints_);
   std::vector<double> joint_length(joints_);
@@ -130,15 +140,8 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
     joint_nodes_host_.push_back({J.a0, J.a1, J.b0, J.b1});
     const double h = length(topo.node_positions[J.a0], topo.node_positions[J.a1]);
     const JointProperties& q = joint_properties.empty() ? uniform : joint_properties[j];
-    JointStrength& s = strength[j];
-    s.tensile_strength = q.tensile_strength;
-    s.cohesion = q.cohesion;
-    s.tan_friction = std::tan(q.friction_angle);
-    s.peak_opening = 2 * h * q.tensile_strength / p_joint;
-    s.peak_slip = 2 * h * q.cohesion / p_joint;
     try {
-      s.opening_softening = softening_length(q.fracture_energy_mode1, q.tensile_strength, s.peak_opening);
-      s.slip_softening = softening_length(q.fracture_energy_mode2, q.cohesion, s.peak_slip);
+      strength[j] = joint_strength(q, h, p_joint);
     } catch (const InputError& e) {
       if (joint_properties.empty()) throw;
       throw InputError("joint " + std::to_string(j) + " (its own strength, f_t = " + std::to_string(q.tensile_strength) +
@@ -165,6 +168,23 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
 }
 
 std::vector<JointStrength> RockSolver::joint_strengths() const { return to_host(a_->joint_params.strength); }
+
+void RockSolver::set_joint_properties(const std::vector<int>& joints, const JointProperties& q) {
+  if (steps_ > 0) throw std::logic_error("RockSolver::set_joint_properties: only before the first step");
+  std::vector<JointStrength> strength = to_host(a_->joint_params.strength);
+  const std::vector<double> length = to_host(a_->joint_params.length);
+  const double p_joint = options_.joint_penalty_factor * material_.youngs_modulus;
+  for (int j : joints) {
+    if (j < 0 || j >= joints_) throw InputError("joint " + std::to_string(j) + " does not exist");
+    try {
+      strength[j] = joint_strength(q, length[j], p_joint);
+    } catch (const InputError& e) {
+      throw InputError("joint " + std::to_string(j) + " (its own strength, f_t = " + std::to_string(q.tensile_strength) +
+                       " Pa): " + e.what());
+    }
+  }
+  copy_from_host(a_->joint_params.strength, strength);
+}
 
 RockSolver::~RockSolver() = default;
 RockSolver::RockSolver(RockSolver&&) noexcept = default;

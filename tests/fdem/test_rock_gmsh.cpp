@@ -1,12 +1,14 @@
 //! \file test_rock_gmsh.cpp
 //! \brief FDEM validation on Gmsh meshes: F2 (Lame cylinder), F6 (Brazilian disc), F8 (uniaxial compression).
 #include "blastsim/fdem/gmsh_mesh.hpp"
+#include "blastsim/fdem/rock_model.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 #include "catch.hpp"
 #include "rock_cases.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 using namespace blastsim::fdem;
 using namespace blastsim::fdem::testing;
@@ -220,4 +222,89 @@ TEST_CASE("F8: uniaxial compression strength near 2 c cos(phi) / (1 - sin(phi))"
   CHECK(free_mesh.strength > expected);
   CHECK(free_mesh.strength < 1.6 * expected);
   CHECK(free_mesh.broken > 0);
+}
+
+namespace {
+struct JointSetPull {
+  int broken = 0;            //!< joints broken at the end
+  int broken_off_set = 0;    //!< of which not on the set
+  int set_joints = 0;        //!< joints on the set
+  int broken_lines = 0;      //!< set lines with every joint broken
+  int fragments = 0;
+};
+
+//! A 0.1 m square block (5 mm elements, the paper's rock, damping 0.1) whose top edge is pulled up at 0.02 m/s
+//! for 0.1 ms with the bottom held: a load whose stress (a wave of rho c_p v = 0.28 MPa, then about 1 MPa of
+//! static stretch) leaves the intact rock (f_t 6.3 MPa) whole. `set`: a horizontal set of four lines at
+//! y = 12.5, 37.5, 62.5, 87.5 mm (open, or closed with the given strength).
+JointSetPull pull_jointed_block(const JointSetSpec* set) {
+  RockModelSpec spec;
+  spec.material = RockMaterial::paper_table2();
+  spec.options.damping_ratio = 0.1;
+  spec.mesh.shape = MeshShape::rectangle;
+  spec.mesh.min = {0.0, 0.0}, spec.mesh.max = {0.1, 0.1};
+  spec.mesh.element_size = 0.005;
+  spec.velocities.push_back({"top", {-1.0, 0.1 - 1e-9}, {1.0, 1.0}, {0.0, 0.02}, true, true});
+  spec.velocities.push_back({"bottom", {-1.0, -1.0}, {1.0, 1e-9}, {0.0, 0.0}, true, true});
+  if (set) spec.joint_sets.push_back(*set);
+  RockModel m = build_rock_model(spec);
+  RockSolver& s = *m.solver;
+  run_to(s, 1e-4, 0.9 * s.stable_dt());
+  const RockSnapshot snap = s.snapshot();
+  JointSetPull r;
+  r.fragments = 0;
+  const std::vector<int> labels = s.fragment_labels();
+  for (std::size_t t = 0; t < labels.size(); ++t) r.fragments += labels[t] == static_cast<int>(t) ? 1 : 0;
+  std::vector<int> on_set(snap.joint_broken.size(), 0);
+  if (set) {
+    r.set_joints = static_cast<int>(m.set_joints[0].size());
+    for (int j : m.set_joints[0]) on_set[j] = 1;
+  }
+  std::map<long, std::pair<int, int>> lines;  // line (y in 0.1 mm) -> (joints, broken)
+  for (std::size_t j = 0; j < snap.joint_broken.size(); ++j) {
+    if (!snap.joint_broken[j]) continue;
+    ++r.broken;
+    r.broken_off_set += on_set[j] ? 0 : 1;
+  }
+  for (std::size_t j = 0; set && j < on_set.size(); ++j) {
+    if (!on_set[j]) continue;
+    const auto& n = snap.joint_nodes[j];
+    auto& line = lines[std::lround(1e4 * snap.y0[n[0]])];
+    ++line.first;
+    line.second += snap.joint_broken[j] ? 1 : 0;
+  }
+  for (const auto& [y, c] : lines) r.broken_lines += c.first == c.second ? 1 : 0;
+  return r;
+}
+}  // namespace
+
+TEST_CASE("J3 joint set: a block cut by a set breaks only along it under a pull that leaves intact rock whole",
+          "[fdem][jointset][J3][gmsh]") {
+  const JointSetPull intact = pull_jointed_block(nullptr);
+  JointSetSpec set;
+  set.label = "rock.joint_set.0";
+  set.angle = 0;
+  set.spacing = 0.025;
+  set.offset = 0.0125;  // lines at y = 0.05 + 0.0125 + k 0.025
+  set.open = true;
+  const JointSetPull open = pull_jointed_block(&set);
+  set.open = false;
+  set.properties = joint_properties_of(RockMaterial::paper_table2());
+  set.properties.tensile_strength = 0.1e6, set.properties.cohesion = 0.3e6;  // weak closed joints
+  // Fracture energies small enough for the pull's 2 um to break the joints (softening over 2.59 G / f_t = 1.3 um).
+  set.properties.fracture_energy_mode1 = 0.05, set.properties.fracture_energy_mode2 = 0.25;
+  const JointSetPull weak = pull_jointed_block(&set);
+  std::printf("J3: intact block: %d joints broken, %d piece(s); open set (%d joints on 4 lines): %d broken, %d off "
+              "the set, %d pieces; weak set (f_t 0.1 MPa): %d broken, %d off the set, %d whole lines, %d pieces\n",
+              intact.broken, intact.fragments, open.set_joints, open.broken, open.broken_off_set, open.fragments,
+              weak.broken, weak.broken_off_set, weak.broken_lines, weak.fragments);
+  CHECK(intact.broken == 0);
+  CHECK(intact.fragments == 1);
+  CHECK(open.set_joints >= 4 * 20);  // four lines of at least 0.1 m / 5 mm joints
+  CHECK(open.broken == open.set_joints);
+  CHECK(open.broken_off_set == 0);
+  CHECK(open.fragments == 5);
+  CHECK(weak.broken > 0);
+  CHECK(weak.broken_off_set == 0);
+  CHECK(weak.broken_lines >= 1);
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "blastsim/fdem/gmsh_mesh.hpp"
+#include "blastsim/fdem/joint_sets.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
@@ -112,6 +113,9 @@ struct RockModelSpec {
   std::vector<PreCutCrack> cracks;
   //! Heterogeneous joint strength (heterogeneity.hpp); absent: every joint has the material's.
   std::optional<StrengthHeterogeneity> heterogeneity;
+  //! Natural joint sets (joint_sets.hpp): a built shape follows their traces, whose joints take the set's
+  //! properties (over the heterogeneous draw) or start broken (open sets).
+  std::vector<JointSetSpec> joint_sets;
 };
 
 //! The mesh, its FDEM topology and the solver, with the nodes of each velocity load.
@@ -121,6 +125,9 @@ struct RockModel {
   std::unique_ptr<RockSolver> solver;
   std::vector<std::vector<int>> velocity_nodes;
   std::vector<std::vector<int>> crack_joints;  //!< the joints of each pre-cut crack (spec.cracks' order)
+  std::vector<std::vector<int>> set_joints;    //!< the joints of each joint set (spec.joint_sets' order)
+  //! The set of each joint (-1: none), when spec.joint_sets is not empty.
+  std::vector<int> joint_set_of;
 };
 //! Builds the model. Throws InputError: a velocity load's box without nodes, a boundary group the mesh lacks
 //! (listing those it has), a probe outside the rock, a pre-cut crack with no joint along its segment.

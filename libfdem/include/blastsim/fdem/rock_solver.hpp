@@ -142,6 +142,10 @@ class RockSolver {
   //! the same labels on every backend and thread count). Costs a few sweeps over the triangles and a sync
   //! per sweep.
   std::vector<int> fragment_labels() const;
+  //! Gives `joints` the strength and fracture energies `q` (natural joints of a set), before the first step.
+  //! Throws InputError for a joint that does not exist or properties the joint law cannot take,
+  //! std::logic_error after a step.
+  void set_joint_properties(const std::vector<int>& joints, const JointProperties& q);
   //! Each joint's strength parameters as the joint law uses them (host copy; heterogeneous rock shows its draw).
   std::vector<JointStrength> joint_strengths() const;
   //! Sets velocity probes at points [m] of the initial mesh (replacing any earlier set; their peaks start at

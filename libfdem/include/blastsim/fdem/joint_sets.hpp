@@ -1,0 +1,39 @@
+//! \file joint_sets.hpp
+//! \brief Natural joint sets of a rock mass: parallel traces of given orientation, spacing, trace length and
+//! persistence, clipped to the rock, which the built mesh follows and whose joints take the set's properties.
+#pragma once
+
+#include "blastsim/fdem/gmsh_mesh.hpp"
+#include "blastsim/fdem/heterogeneity.hpp"
+
+#include <string>
+#include <vector>
+
+namespace blastsim::fdem {
+
+struct MeshSpec;
+
+//! One joint set. Its traces lie on the lines n . (x - c) = offset + k spacing (k integer; c the centre of the
+//! rock's outline, n the normal of the traces' direction d = (cos angle, sin angle)); along each line they repeat
+//! with period trace_length / persistence, the pattern shifted along the line by a uniform fraction of the
+//! period drawn per line from `seed`. Traces are clipped to the rock (outline less holes); pieces shorter than
+//! the mesh's half element are dropped.
+struct JointSetSpec {
+  std::string label = "joint_set";  //!< names the set in messages (e.g. rock.joint_set.0)
+  double angle = 0;             //!< [rad] direction of the traces from +x, counter-clockwise
+  double spacing = 0;           //!< [m] normal distance between neighbouring lines, > 0
+  double trace_length = 0;      //!< [m] length of a trace; 0: every line crosses the whole rock (persistence 1)
+  double persistence = 1;       //!< (0, 1]: trace length over the period along a line
+  double offset = 0;            //!< [m] normal distance of one line from the outline's centre
+  long long seed = 1;           //!< of the shifts along the lines
+  bool open = false;            //!< broken from the start (no strength; contact and friction only)
+  double initial_aperture = 0;  //!< [m] of open joints: crack gas room (coupled runs)
+  JointProperties properties;   //!< strength of closed joints
+};
+
+//! The traces of `set` clipped to the rock of `shape` (a built shape: rectangle, disc, and those with holes),
+//! in line order, then along each line. Pieces shorter than `min_length` [m] are dropped. Throws InputError
+//! naming set.label for a bad spacing, persistence or trace length, or a mesh file (no outline to clip to).
+std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& shape, double min_length);
+
+}  // namespace blastsim::fdem

@@ -1,0 +1,123 @@
+//! \file joint_sets.cpp
+//! \brief Traces of a joint set: parallel lines at the set's spacing, traces at its persistence, clipped to the
+//! rock's outline less its holes.
+#include "blastsim/fdem/joint_sets.hpp"
+
+#include "blastsim/core/error.hpp"
+#include "blastsim/fdem/rock_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <utility>
+
+namespace blastsim::fdem {
+
+namespace {
+
+using Interval = std::pair<double, double>;  // [t0, t1] along a line p + t d
+
+//! The part of the line p + t d (|d| = 1) inside the circle (c, r), or an empty interval.
+Interval circle_chord(const std::array<double, 2>& p, const std::array<double, 2>& d, const std::array<double, 2>& c,
+                      double r) {
+  const double wx = p[0] - c[0], wy = p[1] - c[1];
+  const double b = wx * d[0] + wy * d[1], q = wx * wx + wy * wy - r * r;
+  const double disc = b * b - q;
+  if (disc <= 1e-12 * r * r) return {0.0, 0.0};  // a tangent (to round-off: half-chords below 1e-6 r) cuts nothing
+  const double h = std::sqrt(disc);
+  return {-b - h, -b + h};
+}
+
+//! The part of the line inside the box [lo, hi] (slab method), or an empty interval.
+Interval box_chord(const std::array<double, 2>& p, const std::array<double, 2>& d, const std::array<double, 2>& lo,
+                   const std::array<double, 2>& hi) {
+  double t0 = -1e300, t1 = 1e300;
+  for (int k = 0; k < 2; ++k) {
+    if (std::abs(d[k]) < 1e-300) {
+      if (p[k] < lo[k] || p[k] > hi[k]) return {0.0, 0.0};
+      continue;
+    }
+    double a = (lo[k] - p[k]) / d[k], b = (hi[k] - p[k]) / d[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+  }
+  return t1 > t0 ? Interval{t0, t1} : Interval{0.0, 0.0};
+}
+
+//! `pieces` less the interval `cut`.
+std::vector<Interval> subtract(const std::vector<Interval>& pieces, const Interval& cut) {
+  if (!(cut.second > cut.first)) return pieces;
+  std::vector<Interval> out;
+  for (const Interval& s : pieces) {
+    if (cut.second <= s.first || cut.first >= s.second) {
+      out.push_back(s);
+      continue;
+    }
+    if (cut.first > s.first) out.push_back({s.first, cut.first});
+    if (cut.second < s.second) out.push_back({cut.second, s.second});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& shape, double min_length) {
+  auto fail = [&](const std::string& what) { throw InputError(set.label + "." + what); };
+  if (shape.shape == MeshShape::file) fail("spacing: joint sets need a built mesh shape (a mesh file has its own lines)");
+  if (!(set.spacing > 0) || !std::isfinite(set.spacing)) fail("spacing must be a positive number of metres");
+  if (!(set.persistence > 0 && set.persistence <= 1)) fail("persistence must be in (0, 1]");
+  if (!(set.trace_length >= 0) || !std::isfinite(set.trace_length)) fail("trace_length must be >= 0 m");
+  if (set.persistence < 1 && set.trace_length == 0) fail("trace_length: needed when persistence < 1");
+  // Outline centre and a radius that covers it.
+  std::array<double, 2> c{};
+  double reach = 0;
+  const bool box = shape.is_rectangle();
+  if (box) {
+    c = {0.5 * (shape.min[0] + shape.max[0]), 0.5 * (shape.min[1] + shape.max[1])};
+    reach = 0.5 * std::hypot(shape.max[0] - shape.min[0], shape.max[1] - shape.min[1]);
+  } else {
+    c = shape.center;
+    reach = shape.radius;
+  }
+  std::vector<Circle> holes = shape.holes;
+  if (shape.shape == MeshShape::disc_with_hole || shape.shape == MeshShape::rectangle_with_hole)
+    holes.push_back({shape.center, shape.hole_radius});
+  const std::array<double, 2> d{std::cos(set.angle), std::sin(set.angle)}, n{-d[1], d[0]};
+  const bool through = set.trace_length == 0 || set.persistence == 1;
+  const double period = through ? 0.0 : set.trace_length / set.persistence;
+  std::mt19937_64 bits(static_cast<std::uint64_t>(set.seed));
+  // Lines k = k_lo..k_hi with |offset + k spacing| < reach, in order.
+  const long long k_lo = static_cast<long long>(std::ceil((-reach - set.offset) / set.spacing));
+  const long long k_hi = static_cast<long long>(std::floor((reach - set.offset) / set.spacing));
+  if (k_hi - k_lo > 100000) fail("spacing: more than 100,000 lines across the rock");
+  std::vector<Segment> out;
+  for (long long k = k_lo; k <= k_hi; ++k) {
+    const double s = set.offset + static_cast<double>(k) * set.spacing;
+    const std::array<double, 2> p{c[0] + s * n[0], c[1] + s * n[1]};  // the line's point nearest the centre
+    const double shift = static_cast<double>(bits() >> 11) * (1.0 / 9007199254740992.0);  // one per line
+    const Interval rock = box ? box_chord(p, d, shape.min, shape.max) : circle_chord(p, d, shape.center, shape.radius);
+    if (!(rock.second > rock.first)) continue;
+    std::vector<Interval> traces;
+    if (through) {
+      traces.push_back(rock);
+    } else {
+      // Traces [t0 + m period, t0 + m period + trace_length] covering [rock.first, rock.second].
+      const double t0 = -reach - shift * period;
+      const long long m0 = static_cast<long long>(std::floor((rock.first - t0) / period)) - 1;
+      for (long long m = m0;; ++m) {
+        const double a = t0 + static_cast<double>(m) * period, b = a + set.trace_length;
+        if (a >= rock.second) break;
+        const double lo = std::max(a, rock.first), hi = std::min(b, rock.second);
+        if (hi > lo) traces.push_back({lo, hi});
+      }
+    }
+    for (const Circle& h : holes) traces = subtract(traces, circle_chord(p, d, h.center, h.radius));
+    for (const Interval& t : traces)
+      if (t.second - t.first >= min_length)
+        out.push_back({{p[0] + t.first * d[0], p[1] + t.first * d[1]}, {p[0] + t.second * d[0], p[1] + t.second * d[1]}});
+  }
+  return out;
+}
+
+}  // namespace blastsim::fdem
