@@ -512,6 +512,7 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
     for (const std::vector<int>& j : model.crack_joints) joints += j.size();
     log << fmt::format("pre-cut cracks: {} ({} joints broken at the start)\n", model.crack_joints.size(), joints);
   }
+  log << RockOutputs::joint_sets_line(c, model);
   if (g.materials().tracer) log << "blast gas traced: the gas of the [[gas.region]] tables with blast_gas = true\n";
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
   const std::string checkpoint_path = (std::filesystem::path(c.output.directory) / "checkpoint.bin").string();

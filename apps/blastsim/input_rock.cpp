@@ -166,11 +166,12 @@ void read_rock(TableReader& root, Case& c) {
     t.finish();
     if (m.mesh.shape == fdem::MeshShape::file)
       throw InputError(t.path() + ": joint sets need a built mesh shape (a mesh file has its own lines)");
-    const std::vector<fdem::Segment> traces = fdem::joint_set_traces(set, m.mesh, 0.5 * m.mesh.element_size);
-    for (std::size_t k = 0; k < traces.size(); ++k)
-      fdem::check_mesh_segment(m.mesh, traces[k], fmt::format("{} (trace {})", t.path(), k));
     m.joint_sets.push_back(set);
   }
+  const std::vector<std::vector<fdem::Segment>> traces = fdem::joint_sets_traces(m.joint_sets, m.mesh);
+  for (std::size_t s = 0; s < traces.size(); ++s)
+    for (std::size_t k = 0; k < traces[s].size(); ++k)
+      fdem::check_mesh_segment(m.mesh, traces[s][k], fmt::format("{} (trace {})", m.joint_sets[s].label, k));
   if (rock.has("heterogeneity")) {
     TableReader h = rock.table("heterogeneity");
     fdem::StrengthHeterogeneity het;

@@ -108,6 +108,18 @@ void RockOutputs::read_checkpoint(CheckpointReader& r) {
   joints_pvd_.read_checkpoint(r, "out.joints.pvd");
 }
 
+std::string RockOutputs::joint_sets_line(const Case& c, const fdem::RockModel& model) {
+  const std::vector<fdem::JointSetSpec>& sets = c.rock.model.joint_sets;
+  if (sets.empty()) return "";
+  std::string line = "joint sets:";
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    line += fmt::format("{} {} {} joints ({})", k ? ";" : "", sets[k].label, model.set_joints[k].size(),
+                        sets[k].open ? std::string("open: broken at the start")
+                                     : fmt::format("closed: f_t {:g} Pa, c {:g} Pa", sets[k].properties.tensile_strength,
+                                                   sets[k].properties.cohesion));
+  return line + "\n";
+}
+
 void RockOutputs::snapshot() {
   if (!c_.output.vtk && !c_.analysis.fragments && c_.probes.rock_points.empty()) return;
   const fdem::RockSnapshot s = solver_.snapshot();

@@ -52,6 +52,8 @@ class RockOutputs {
   //! One log line: the wall time the analysis took and its share of the run (not in summary.txt, which a
   //! run repeated with the same input reproduces byte for byte).
   std::string cost_note() const;
+  //! One log line on the joint sets (each set's joints, open or its strength), or "" without sets.
+  static std::string joint_sets_line(const Case& c, const fdem::RockModel& model);
 
  private:
   void analyse(const fdem::RockSnapshot& s, const std::vector<int>& labels);  //!< the analysis files of a snapshot

@@ -87,6 +87,7 @@ std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& s
   const bool through = set.trace_length == 0 || set.persistence == 1;
   const double period = through ? 0.0 : set.trace_length / set.persistence;
   std::mt19937_64 bits(static_cast<std::uint64_t>(set.seed));
+  const double clearance = 2 * min_length;  // an element
   // Lines k = k_lo..k_hi with |offset + k spacing| < reach, in order.
   const long long k_lo = static_cast<long long>(std::ceil((-reach - set.offset) / set.spacing));
   const long long k_hi = static_cast<long long>(std::floor((reach - set.offset) / set.spacing));
@@ -98,6 +99,27 @@ std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& s
     const double shift = static_cast<double>(bits() >> 11) * (1.0 / 9007199254740992.0);  // one per line
     const Interval rock = box ? box_chord(p, d, shape.min, shape.max) : circle_chord(p, d, shape.center, shape.radius);
     if (!(rock.second > rock.first)) continue;
+    // A line that runs within `clearance` of the outline along its length (a shallow chord of a disc, a line
+    // along a side of a box) would leave slivers of rock between them: no traces on it.
+    if (box ? (std::abs(d[1]) < 1e-12 && std::min(p[1] - shape.min[1], shape.max[1] - p[1]) < clearance) ||
+                  (std::abs(d[0]) < 1e-12 && std::min(p[0] - shape.min[0], shape.max[0] - p[0]) < clearance)
+            : shape.radius - std::abs(s) < clearance)
+      continue;
+    // The holes on this line: one that the line meets at a shallow angle or misses by less than `clearance` is
+    // cut out with `clearance` to spare (a trace would otherwise end in a sliver against its rim).
+    std::vector<Interval> cuts;
+    for (const Circle& h : holes) {
+      const double miss = std::abs((h.center[0] - p[0]) * n[0] + (h.center[1] - p[1]) * n[1]);
+      cuts.push_back(circle_chord(p, d, h.center, std::abs(miss - h.radius) < clearance ? h.radius + clearance : h.radius));
+    }
+    // A trace end within `clearance` of the outline or a cut moves onto it.
+    auto snap = [&](double t) {
+      for (double b : {rock.first, rock.second}) if (std::abs(t - b) < clearance) return b;
+      for (const Interval& c : cuts)
+        if (c.second > c.first)
+          for (double b : {c.first, c.second}) if (std::abs(t - b) < clearance) return b;
+      return t;
+    };
     std::vector<Interval> traces;
     if (through) {
       traces.push_back(rock);
@@ -106,17 +128,58 @@ std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& s
       const double t0 = -reach - shift * period;
       const long long m0 = static_cast<long long>(std::floor((rock.first - t0) / period)) - 1;
       for (long long m = m0;; ++m) {
-        const double a = t0 + static_cast<double>(m) * period, b = a + set.trace_length;
+        const double a = snap(t0 + static_cast<double>(m) * period), b = snap(t0 + static_cast<double>(m) * period + set.trace_length);
         if (a >= rock.second) break;
         const double lo = std::max(a, rock.first), hi = std::min(b, rock.second);
         if (hi > lo) traces.push_back({lo, hi});
       }
     }
-    for (const Circle& h : holes) traces = subtract(traces, circle_chord(p, d, h.center, h.radius));
+    for (const Interval& c : cuts) traces = subtract(traces, c);
     for (const Interval& t : traces)
       if (t.second - t.first >= min_length)
         out.push_back({{p[0] + t.first * d[0], p[1] + t.first * d[1]}, {p[0] + t.second * d[0], p[1] + t.second * d[1]}});
   }
+  return out;
+}
+
+void snap_trace_ends(std::vector<std::vector<Segment>>& sets, double clearance, double min_length) {
+  for (std::size_t a = 0; a < sets.size(); ++a)
+    for (Segment& t : sets[a]) {
+      for (int end = 0; end < 2; ++end) {
+        std::array<double, 2>& e = end == 0 ? t.a : t.b;
+        const std::array<double, 2>& o = end == 0 ? t.b : t.a;
+        const double len = std::hypot(e[0] - o[0], e[1] - o[1]);
+        const std::array<double, 2> u{(e[0] - o[0]) / len, (e[1] - o[1]) / len};  // outward at this end
+        double best = clearance;
+        std::array<double, 2> to = e;
+        for (std::size_t b = 0; b < sets.size(); ++b) {
+          if (b == a) continue;
+          for (const Segment& q : sets[b]) {
+            // e + x u = q.a + w (q.b - q.a): the crossing of this trace's line with segment q.
+            const double qx = q.b[0] - q.a[0], qy = q.b[1] - q.a[1];
+            const double den = u[0] * qy - u[1] * qx;
+            if (std::abs(den) < 1e-12 * std::hypot(qx, qy)) continue;  // parallel
+            const double rx = q.a[0] - e[0], ry = q.a[1] - e[1];
+            const double x = (rx * qy - ry * qx) / den, w = (rx * u[1] - ry * u[0]) / den;
+            if (w < 0 || w > 1 || std::abs(x) >= best || x == 0) continue;
+            best = std::abs(x);
+            to = {e[0] + x * u[0], e[1] + x * u[1]};
+          }
+        }
+        e = to;
+      }
+    }
+  for (std::vector<Segment>& set : sets)
+    set.erase(std::remove_if(set.begin(), set.end(),
+                             [&](const Segment& t) { return std::hypot(t.b[0] - t.a[0], t.b[1] - t.a[1]) < min_length; }),
+              set.end());
+}
+
+std::vector<std::vector<Segment>> joint_sets_traces(const std::vector<JointSetSpec>& sets, const MeshSpec& shape) {
+  const double min_length = 0.5 * shape.element_size;
+  std::vector<std::vector<Segment>> out;
+  for (const JointSetSpec& set : sets) out.push_back(joint_set_traces(set, shape, min_length));
+  snap_trace_ends(out, 2 * min_length, min_length);
   return out;
 }
 

@@ -154,11 +154,8 @@ RockModel build_rock_model(const RockModelSpec& spec) {
   MeshSpec mesh = spec.mesh;
   if (mesh.shape != MeshShape::file)  // a built shape follows the pre-cut cracks
     for (const PreCutCrack& c : spec.cracks) mesh.joint_lines.push_back(c.segment);
-  std::vector<std::vector<Segment>> traces;  // of each joint set
-  for (const JointSetSpec& set : spec.joint_sets) {
-    traces.push_back(joint_set_traces(set, spec.mesh, 0.5 * spec.mesh.element_size));
-    for (const Segment& t : traces.back()) mesh.joint_lines.push_back(t);
-  }
+  const std::vector<std::vector<Segment>> traces = joint_sets_traces(spec.joint_sets, spec.mesh);  // of each set
+  for (const std::vector<Segment>& set : traces) mesh.joint_lines.insert(mesh.joint_lines.end(), set.begin(), set.end());
   m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
   const std::vector<JointProperties> joints =

@@ -103,3 +103,32 @@ TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a
   std::printf("bench restart: %ld steps, killed at step %ld, restarted from the 20 us checkpoint (charge 2 fires at 25 "
               "us): %d of 5 files identical\n", steps, steps - 3, identical);
 }
+
+TEST_CASE("The jointed bench reads its joint sets and heterogeneity; bad joint-set keys give one clear error",
+          "[app][rock][jointset][bad]") {
+  const std::string jointed = std::string(BLASTSIM_EXAMPLES_DIR) + "/jointed_bench/jointed_bench.toml";
+  auto read_jointed = [&](const std::vector<std::string>& overrides) {
+    return app::read_case(app::load_input(jointed, overrides));
+  };
+  const app::Case c = read_jointed({});
+  REQUIRE(c.rock.model.joint_sets.size() == 2);
+  CHECK_FALSE(c.rock.model.joint_sets[0].open);
+  CHECK(c.rock.model.joint_sets[0].properties.tensile_strength == 1.0e6);
+  CHECK(c.rock.model.joint_sets[0].properties.friction_angle == c.rock.model.material.friction_angle);
+  CHECK(c.rock.model.joint_sets[1].open);
+  CHECK(c.rock.model.joint_sets[1].spacing == 0.08);
+  CHECK(c.rock.model.heterogeneity.has_value());
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.spacing=0.001"}), Catch::Contains("rock.joint_set.0.spacing"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.angle=200"}), Catch::Contains("rock.joint_set.0.angle"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.persistence=1.5"}), Catch::Contains("rock.joint_set.0.persistence"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.1.persistence=0.5"}), Catch::Contains("rock.joint_set.1.trace_length"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.trace_length=0.002"}),
+                    Catch::Contains("rock.joint_set.0.trace_length"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.1.cohesion=1e6"}),
+                    Catch::Contains("rock.joint_set.1.cohesion") && Catch::Contains("open"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.initial_aperture=1e-4"}),
+                    Catch::Contains("rock.joint_set.0.initial_aperture"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.1.initial_aperture=1e-4"}),
+                    Catch::Contains("rock.joint_set.1.initial_aperture") && Catch::Contains("crack_gas"));
+  CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.dip=10"}), Catch::Contains("rock.joint_set.0.dip"));
+}

@@ -124,14 +124,18 @@ TEST_CASE("J2 joint set: through traces are the rock's chords less its holes", "
     }
     total += trace_length_of(s);
   }
-  // Exact total: chords 2 sqrt(1 - x^2) of the 19 lines x = -0.9..0.9, less the holes' chords on them.
+  // Exact total: chords 2 sqrt(1 - x^2) of the 19 lines x = -0.9..0.9, less the holes' chords on them; a line
+  // that meets a hole's rim within the clearance (2 x 0.01 m) of a tangent loses the chord of the hole's circle
+  // grown by the clearance instead (x = 0.2 and 0.4 touch the larger hole).
+  const double clearance = 0.02;
   double exact = 0;
   for (int k = -9; k <= 9; ++k) {
     const double x = 0.1 * k;
     exact += 2 * std::sqrt(1 - x * x);
     for (const Circle& h : disc.holes) {
-      const double dxh = x - h.center[0];
-      if (std::abs(dxh) < h.radius - 1e-9) exact -= 2 * std::sqrt(h.radius * h.radius - dxh * dxh);  // tangents: 0
+      const double dxh = std::abs(x - h.center[0]);
+      const double r = std::abs(dxh - h.radius) < clearance ? h.radius + clearance : h.radius;
+      if (dxh < r) exact -= 2 * std::sqrt(r * r - dxh * dxh);
     }
   }
   std::printf("J2: %zu traces, total length %.12f m (exact %.12f m)\n", traces.size(), total, exact);
@@ -140,8 +144,15 @@ TEST_CASE("J2 joint set: through traces are the rock's chords less its holes", "
   int on_hole_line = 0;
   for (const Segment& s : traces) on_hole_line += std::abs(s.a[0] - 0.3) < 1e-9 ? 1 : 0;
   CHECK(on_hole_line == 2);
-  // 19 lines, two of them cut by a hole (x = 0.3, x = -0.4); x = 0.2 and 0.4 touch the larger hole only.
-  CHECK(traces.size() == 21);
+  // 19 lines, four of them cut in two: through a hole (x = 0.3, -0.4) or at a tangent with clearance (0.2, 0.4).
+  CHECK(traces.size() == 23);
+  // No trace end lies within the clearance of a hole's rim unless on it.
+  for (const Segment& s : traces)
+    for (const auto& p : {s.a, s.b})
+      for (const Circle& h : disc.holes) {
+        const double gap = std::hypot(p[0] - h.center[0], p[1] - h.center[1]) - h.radius;
+        CHECK((gap < 1e-9 || gap > clearance - 1e-9));
+      }
   // Bad sets are refused naming them.
   JointSetSpec bad = set;
   bad.spacing = 0;
@@ -149,4 +160,20 @@ TEST_CASE("J2 joint set: through traces are the rock's chords less its holes", "
   bad = set;
   bad.persistence = 0.5;
   CHECK_THROWS_WITH(joint_set_traces(bad, disc, 0.01), Catch::Contains("rock.joint_set.1.trace_length"));
+}
+
+TEST_CASE("J4 joint sets: a trace end near another set's trace moves onto it, so no sliver is left between them",
+          "[fdem][jointset][J4]") {
+  // A vertical trace ending 3 mm below and one ending 4 mm past a horizontal trace of another set (10 mm
+  // clearance), and one ending 30 mm away (left alone).
+  std::vector<std::vector<Segment>> sets = {{{{0.0, 0.0}, {1.0, 0.0}}},
+                                            {{{0.2, -0.5}, {0.2, -0.003}}, {{0.5, -0.5}, {0.5, 0.004}},
+                                             {{0.8, -0.5}, {0.8, -0.03}}}};
+  snap_trace_ends(sets, 0.01, 0.005);
+  CHECK(sets[1][0].b[1] == Approx(0.0).margin(1e-15));  // extended onto the line
+  CHECK(sets[1][1].b[1] == Approx(0.0).margin(1e-15));  // shortened onto it
+  CHECK(sets[1][2].b[1] == -0.03);                     // beyond the clearance: unchanged
+  CHECK(sets[1][0].a[1] == -0.5);                      // the far ends stay
+  CHECK(sets[0][0].a[0] == 0.0);
+  CHECK(sets[0][0].b[0] == 1.0);
 }

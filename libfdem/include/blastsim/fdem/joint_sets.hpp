@@ -32,8 +32,21 @@ struct JointSetSpec {
 };
 
 //! The traces of `set` clipped to the rock of `shape` (a built shape: rectangle, disc, and those with holes),
-//! in line order, then along each line. Pieces shorter than `min_length` [m] are dropped. Throws InputError
+//! in line order, then along each line. Pieces shorter than `min_length` [m] (half an element) are dropped.
+//! So that the mesh needs no slivers, with a clearance of 2 min_length (an element): a line that runs that
+//! close to the outline along its length gets no traces, a hole that a line meets at a shallow angle or misses
+//! by less is cut out with that much to spare, and a trace end that close to the outline or a cut moves onto
+//! it (ends near another set's traces: snap_trace_ends()). Throws InputError
 //! naming set.label for a bad spacing, persistence or trace length, or a mesh file (no outline to clip to).
 std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& shape, double min_length);
+
+//! Moves each trace end that lies within `clearance` [m] of a trace of another set, along its own line, onto
+//! that trace (extending or shortening it: no sliver of rock between them), then drops traces shorter than
+//! `min_length` [m].
+void snap_trace_ends(std::vector<std::vector<Segment>>& sets, double clearance, double min_length);
+
+//! The traces of every set of a rock (joint_set_traces() with half of shape.element_size as the shortest
+//! piece), their ends snapped across sets with an element of clearance (snap_trace_ends()).
+std::vector<std::vector<Segment>> joint_sets_traces(const std::vector<JointSetSpec>& sets, const MeshSpec& shape);
 
 }  // namespace blastsim::fdem
