@@ -104,7 +104,7 @@ TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a
               "us): %d of 5 files identical\n", steps, steps - 3, identical);
 }
 
-TEST_CASE("The jointed bench reads its joint sets and heterogeneity; bad joint-set keys give one clear error",
+TEST_CASE("The jointed bench reads its joint sets and heterogeneity, and bad joint-set keys give one clear error",
           "[app][rock][jointset][bad]") {
   const std::string jointed = std::string(BLASTSIM_EXAMPLES_DIR) + "/jointed_bench/jointed_bench.toml";
   auto read_jointed = [&](const std::vector<std::string>& overrides) {
