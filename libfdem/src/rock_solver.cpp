@@ -62,6 +62,16 @@ JointStrength joint_strength(const JointProperties& q, double h, double p) {
   return s;
 }
 
+//! joint_strength() for joint j with its own properties: an error names the joint and its strength.
+JointStrength own_joint_strength(int j, const JointProperties& q, double h, double p) {
+  try {
+    return joint_strength(q, h, p);
+  } catch (const InputError& e) {
+    throw InputError("joint " + std::to_string(j) + " (its own strength, f_t = " + std::to_string(q.tensile_strength) +
+                     " Pa): " + e.what());
+  }
+}
+
 }  // namespace
 
 RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, const RockOptions& options,
@@ -139,14 +149,8 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
     slot_neighbour[J.b0] = J.triangle_a, slot_joint[J.b0] = j;
     joint_nodes_host_.push_back({J.a0, J.a1, J.b0, J.b1});
     const double h = length(topo.node_positions[J.a0], topo.node_positions[J.a1]);
-    const JointProperties& q = joint_properties.empty() ? uniform : joint_properties[j];
-    try {
-      strength[j] = joint_strength(q, h, p_joint);
-    } catch (const InputError& e) {
-      if (joint_properties.empty()) throw;
-      throw InputError("joint " + std::to_string(j) + " (its own strength, f_t = " + std::to_string(q.tensile_strength) +
-                       " Pa): " + e.what());
-    }
+    strength[j] = joint_properties.empty() ? joint_strength(uniform, h, p_joint)
+                                           : own_joint_strength(j, joint_properties[j], h, p_joint);
     joint_length[j] = h;
   }
   copy_from_host(a.edge_params.neighbour, slot_neighbour), copy_from_host(a.edge_params.joint, slot_joint);
@@ -176,12 +180,7 @@ void RockSolver::set_joint_properties(const std::vector<int>& joints, const Join
   const double p_joint = options_.joint_penalty_factor * material_.youngs_modulus;
   for (int j : joints) {
     if (j < 0 || j >= joints_) throw InputError("joint " + std::to_string(j) + " does not exist");
-    try {
-      strength[j] = joint_strength(q, length[j], p_joint);
-    } catch (const InputError& e) {
-      throw InputError("joint " + std::to_string(j) + " (its own strength, f_t = " + std::to_string(q.tensile_strength) +
-                       " Pa): " + e.what());
-    }
+    strength[j] = own_joint_strength(j, q, length[j], p_joint);
   }
   copy_from_host(a_->joint_params.strength, strength);
 }
