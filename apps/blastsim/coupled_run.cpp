@@ -470,7 +470,7 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
   const CouplingSettings& k = c.coupling;
   if (c.output.vtk && !cip::vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
-  fdem::RockModel model = make_rock_model(c);
+  fdem::RockModel model = make_rock_model(c, options.restart);
   fdem::RockSolver& rock = *model.solver;
   const double rock_dt = rock_time_step(c, rock);  // checks a fixed dt against the rock's stable step
   cip::GasSolver gas(g.grid, g.materials(), g.solver);
@@ -513,6 +513,7 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
     log << fmt::format("pre-cut cracks: {} ({} joints broken at the start)\n", model.crack_joints.size(), joints);
   }
   log << RockOutputs::joint_sets_line(c, model);
+  log << RockOutputs::in_situ_line(c, model);
   if (g.materials().tracer) log << "blast gas traced: the gas of the [[gas.region]] tables with blast_gas = true\n";
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
   const std::string checkpoint_path = (std::filesystem::path(c.output.directory) / "checkpoint.bin").string();

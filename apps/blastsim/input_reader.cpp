@@ -169,6 +169,22 @@ std::vector<double> TableReader::number_list(const std::string& key, const char*
   return out;
 }
 
+std::vector<std::string> TableReader::text_list(const std::string& key) {
+  const toml::node* n = find(key);
+  if (!n) missing(key, "an array of strings");
+  const toml::array* a = n->as_array();
+  if (!a) throw InputError(fmt::format("{} must be an array of strings", key_path(key)));
+  std::vector<std::string> out;
+  std::string shown;
+  for (const toml::node& e : *a) {
+    if (!e.is_string()) throw InputError(fmt::format("{} must be an array of strings, found {}", key_path(key), type_name(e)));
+    out.push_back(*e.value<std::string>());
+    shown += (shown.empty() ? "\"" : ", \"") + out.back() + "\"";
+  }
+  echo(key, fmt::format("{} = [{}]", key_path(key), shown));
+  return out;
+}
+
 TableReader TableReader::table(const std::string& key, bool required) {
   const toml::node* n = find(key);
   if (!n) {

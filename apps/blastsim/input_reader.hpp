@@ -54,6 +54,8 @@ class TableReader {
   void allow(const std::vector<std::string>& keys);
   std::array<double, 2> pair(const std::string& key, const char* unit, std::optional<std::array<double, 2>> fallback = {});
   std::vector<double> number_list(const std::string& key, const char* unit, Range range);
+  //! An array of strings (may be empty), each a name the caller checks.
+  std::vector<std::string> text_list(const std::string& key);
   bool has(const std::string& key) const;
   //! Sub-table (empty when absent and not required).
   TableReader table(const std::string& key, bool required = false);

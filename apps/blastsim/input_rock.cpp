@@ -50,6 +50,9 @@ fdem::MeshSpec read_mesh(TableReader& t) {
   if (s.ring_mesher && s.shape != MeshShape::disc_with_hole)
     throw InputError(fmt::format("{}.mesher = \"rings\" meshes only shape = \"disc_with_hole\" (this mesh is \"{}\"): use "
                                  "mesher = \"gmsh\"", t.path(), shape));
+  if (t.has("growth") && !s.ring_mesher)
+    throw InputError(t.key_path("growth") + ": the ring mesher's grading; only with mesher = \"rings\"");
+  if (s.ring_mesher) s.ring_growth = t.number("growth", "", Range{1.0, 2.0, false, false}, 1.0);
   for (TableReader& h : t.table_array("hole")) {
     if (!s.has_holes())
       throw InputError(fmt::format("{}: holes are cut from shape = \"rectangle_with_holes\" or \"disc_with_holes\" "
@@ -81,6 +84,68 @@ fdem::MeshSpec read_mesh(TableReader& t) {
   }
   fdem::check_joint_lines(s);
   return s;
+}
+
+//! What a [[rock.joint_set]] or [[rock.joint]] is: open (broken from the start, an optional aperture) or closed
+//! with its own strength (the material's where a key is absent).
+void read_joint_kind(TableReader& t, const fdem::RockMaterial& material, fdem::JointSetSpec& set) {
+  set.open = t.boolean("open", false);
+  const fdem::JointProperties rock_joints = fdem::joint_properties_of(material);
+  if (set.open) {
+    set.initial_aperture = t.number("initial_aperture", "m", Range::non_negative(), 0.0);
+    for (const char* key : {"tensile_strength", "cohesion", "friction_angle", "fracture_energy_mode1",
+                            "fracture_energy_mode2"})
+      if (t.has(key))
+        throw InputError(t.key_path(key) + ": an open joint has no strength (it starts broken); remove the key or "
+                         "set open = false");
+    set.properties = rock_joints;
+  } else {
+    if (t.has("initial_aperture"))
+      throw InputError(t.key_path("initial_aperture") + ": only for open joints (open = true)");
+    fdem::JointProperties& q = set.properties;
+    q.tensile_strength = t.number("tensile_strength", "Pa", Range::positive(), rock_joints.tensile_strength);
+    q.cohesion = t.number("cohesion", "Pa", Range::positive(), rock_joints.cohesion);
+    q.friction_angle = t.number("friction_angle", "deg", Range{0.0, 90.0, false, true},
+                                rock_joints.friction_angle * 180 / M_PI) * M_PI / 180;
+    q.fracture_energy_mode1 =
+        t.number("fracture_energy_mode1", "J/m2", Range::positive(), rock_joints.fracture_energy_mode1);
+    q.fracture_energy_mode2 =
+        t.number("fracture_energy_mode2", "J/m2", Range::positive(), rock_joints.fracture_energy_mode2);
+  }
+}
+
+//! [rock.in_situ_stress]: the stress, the boundaries that hold it, the equilibration (docs/input.md).
+void read_in_situ_stress(TableReader t, fdem::RockModelSpec& m) {
+  fdem::InSituSpec is;
+  is.label = t.path();
+  fdem::InSituStress& s = is.stress;
+  s.at_reference = {t.number("sigma_xx", "Pa", Range::any(), 0.0), t.number("sigma_yy", "Pa", Range::any(), 0.0),
+                    t.number("tau_xy", "Pa", Range::any(), 0.0)};
+  s.reference_y = t.number("reference_y", "m", Range::any(), 0.0);
+  // Equilibrium under gravity fixes how sigma_yy and tau_xy change with y; sigma_xx may change at any rate.
+  const double rho = m.material.density;
+  auto weight = [&](double g) { return g == 0 ? 0.0 : -rho * g; };  // no -0 without gravity
+  s.gradient = {t.number("gradient_xx", "Pa/m", Range::any(), 0.0), weight(m.options.gravity[1]), weight(m.options.gravity[0])};
+  if (t.has("boundaries")) {
+    is.held_boundaries = t.text_list("boundaries");
+  } else {
+    for (const fdem::ViscousBoundary& v : m.viscous_boundaries) is.held_boundaries.push_back(v.boundary);
+    t.allow({"boundaries"});
+  }
+  is.equilibrate = t.boolean("equilibrate", true);
+  is.equilibrium.tolerance = t.number("tolerance", "", Range{0.0, 1e-3, true, false}, 1e-8);
+  is.equilibrium.max_steps = t.integer("max_steps", "", 1, 200000);
+  t.finish();
+  if (is.held_boundaries.empty())
+    throw InputError(t.key_path("boundaries") + ": no boundary holds the in-situ stress (none given and no "
+                     "[[rock.viscous_boundary]] to take them from); name the boundary groups where the model cuts the "
+                     "rock mass, e.g. boundaries = [\"outer\"]");
+  const bool stressed = s.at_reference[0] != 0 || s.at_reference[1] != 0 || s.at_reference[2] != 0 ||
+                        s.gradient[0] != 0 || s.gradient[1] != 0 || s.gradient[2] != 0;
+  if (!stressed)
+    throw InputError(t.path() + ": every stress and gradient is zero (and rock.gravity is zero): give sigma_xx, "
+                     "sigma_yy or tau_xy, or remove the table");
+  m.in_situ = is;
 }
 
 }  // namespace
@@ -140,38 +205,26 @@ void read_rock(TableReader& root, Case& c) {
                                    set.trace_length, m.mesh.element_size));
     set.offset = t.number("offset", "m", Range::any(), 0.0);
     set.seed = t.integer("seed", "", 0, 1);
-    set.open = t.boolean("open", false);
-    const fdem::JointProperties rock_joints = fdem::joint_properties_of(m.material);
-    if (set.open) {
-      set.initial_aperture = t.number("initial_aperture", "m", Range::non_negative(), 0.0);
-      for (const char* key : {"tensile_strength", "cohesion", "friction_angle", "fracture_energy_mode1",
-                              "fracture_energy_mode2"})
-        if (t.has(key))
-          throw InputError(t.key_path(key) + ": an open set has no strength (it starts broken); remove the key or "
-                           "set open = false");
-      set.properties = rock_joints;
-    } else {
-      if (t.has("initial_aperture"))
-        throw InputError(t.key_path("initial_aperture") + ": only for an open set (open = true)");
-      fdem::JointProperties& q = set.properties;
-      q.tensile_strength = t.number("tensile_strength", "Pa", Range::positive(), rock_joints.tensile_strength);
-      q.cohesion = t.number("cohesion", "Pa", Range::positive(), rock_joints.cohesion);
-      q.friction_angle = t.number("friction_angle", "deg", Range{0.0, 90.0, false, true},
-                                  rock_joints.friction_angle * 180 / M_PI) * M_PI / 180;
-      q.fracture_energy_mode1 =
-          t.number("fracture_energy_mode1", "J/m2", Range::positive(), rock_joints.fracture_energy_mode1);
-      q.fracture_energy_mode2 =
-          t.number("fracture_energy_mode2", "J/m2", Range::positive(), rock_joints.fracture_energy_mode2);
-    }
+    read_joint_kind(t, m.material, set);
     t.finish();
     if (m.mesh.shape == fdem::MeshShape::file)
       throw InputError(t.path() + ": joint sets need a built mesh shape (a mesh file has its own lines)");
     m.joint_sets.push_back(set);
   }
+  for (TableReader& t : rock.table_array("joint")) {
+    fdem::JointSetSpec joint;
+    joint.label = t.path();
+    joint.segments = {{t.pair("from", "m"), t.pair("to", "m")}};
+    read_joint_kind(t, m.material, joint);
+    t.finish();
+    if (m.mesh.shape != fdem::MeshShape::file) fdem::check_mesh_segment(m.mesh, joint.segments[0], joint.label);
+    m.joint_sets.push_back(joint);
+  }
   const std::vector<std::vector<fdem::Segment>> traces = fdem::joint_sets_traces(m.joint_sets, m.mesh);
   for (std::size_t s = 0; s < traces.size(); ++s)
     for (std::size_t k = 0; k < traces[s].size(); ++k)
       fdem::check_mesh_segment(m.mesh, traces[s][k], fmt::format("{} (trace {})", m.joint_sets[s].label, k));
+  if (rock.has("in_situ_stress")) read_in_situ_stress(rock.table("in_situ_stress"), m);
   if (rock.has("heterogeneity")) {
     TableReader h = rock.table("heterogeneity");
     fdem::StrengthHeterogeneity het;

@@ -13,8 +13,9 @@
 
 namespace blastsim::app {
 
-fdem::RockModel make_rock_model(const Case& c) {
+fdem::RockModel make_rock_model(const Case& c, bool restart) {
   fdem::RockModelSpec spec = c.rock.model;
+  if (restart && spec.in_situ) spec.in_situ->equilibrate = false;
   for (size_t k = 0; k < c.probes.rock_points.size(); ++k) {
     const ProbeSettings::RockPoint& p = c.probes.rock_points[k];
     spec.probes.push_back({fmt::format("probe.rock_point.{}", k), p.position, p.until});
@@ -117,6 +118,27 @@ std::string RockOutputs::joint_sets_line(const Case& c, const fdem::RockModel& m
                         sets[k].open ? std::string("open: broken at the start")
                                      : fmt::format("closed: f_t {:g} Pa, c {:g} Pa", sets[k].properties.tensile_strength,
                                                    sets[k].properties.cohesion));
+  return line + "\n";
+}
+
+std::string RockOutputs::in_situ_line(const Case& c, const fdem::RockModel& model) {
+  if (!c.rock.model.in_situ) return "";
+  const fdem::InSituSpec& is = *c.rock.model.in_situ;
+  const fdem::InSituStress& s = is.stress;
+  std::string held;
+  for (const std::string& b : is.held_boundaries) held += (held.empty() ? "" : ", ") + b;
+  std::string line = fmt::format("in-situ stress: sigma_xx {:g}, sigma_yy {:g}, tau_xy {:g} Pa at y = {:g} m (per metre up: "
+                                 "{:g}, {:g}, {:g} Pa/m), held on {}",
+                                 s.at_reference[0], s.at_reference[1], s.at_reference[2], s.reference_y, s.gradient[0],
+                                 s.gradient[1], s.gradient[2], held);
+  if (const auto& e = model.equilibrium)
+    line += fmt::format("; at rest after {} relaxation steps ({} undamped checks, kinetic / elastic energy at most {:.2e} "
+                        "over the last), elastic energy {:.6g} J/m, {} joints broken",
+                        e->steps, e->checks, e->kinetic_ratio, e->elastic_energy, e->broken_joints);
+  else if (is.equilibrate)
+    line += " (equilibrium state from the checkpoint)";
+  else
+    line += " (not equilibrated: equilibrate = false)";
   return line + "\n";
 }
 

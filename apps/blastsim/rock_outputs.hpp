@@ -21,7 +21,8 @@ namespace blastsim::app {
 
 //! The rock model of a case (fdem::build_rock_model() with the case's rock probes), checked against the case
 //! (check_against_mesh()).
-fdem::RockModel make_rock_model(const Case& c);
+//! A restart skips the equilibration under the in-situ stress (the checkpoint holds the state it reached).
+fdem::RockModel make_rock_model(const Case& c, bool restart = false);
 //! InputError when what the case places in the rock does not fit its mesh: an [[analysis.hole]] centre outside
 //! the mesh's bounding box, damage rings wider than the rock, a [[charge]] whose centre a triangle holds.
 void check_against_mesh(const Case& c, const fdem::TriangleMesh& mesh);
@@ -54,6 +55,8 @@ class RockOutputs {
   std::string cost_note() const;
   //! One log line on the joint sets (each set's joints, open or its strength), or "" without sets.
   static std::string joint_sets_line(const Case& c, const fdem::RockModel& model);
+  //! The log line of the in-situ stress and its equilibration ("" without one).
+  static std::string in_situ_line(const Case& c, const fdem::RockModel& model);
 
  private:
   void analyse(const fdem::RockSnapshot& s, const std::vector<int>& labels);  //!< the analysis files of a snapshot

@@ -85,6 +85,7 @@ void run_rock_case(const Case& c, std::ostream& log, const RunOptions& options) 
                      solver.triangle_count(), solver.joint_count(), model.topology.boundary_edges.size(), solver.stable_dt(), dt,
                      static_cast<long long>(std::ceil(c.time.end / dt)));
   log << RockOutputs::joint_sets_line(c, model);
+  log << RockOutputs::in_situ_line(c, model);
   RockOutputs out(c, model);
   out.snapshot();
   out.monitor();

@@ -63,6 +63,7 @@ std::vector<Interval> subtract(const std::vector<Interval>& pieces, const Interv
 }  // namespace
 
 std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& shape, double min_length) {
+  if (!set.segments.empty()) return set.segments;  // explicit joints: the segments as given
   auto fail = [&](const std::string& what) { throw InputError(set.label + "." + what); };
   if (shape.shape == MeshShape::file) fail("spacing: joint sets need a built mesh shape (a mesh file has its own lines)");
   if (!(set.spacing > 0) || !std::isfinite(set.spacing)) fail("spacing must be a positive number of metres");

@@ -117,16 +117,29 @@ TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y
   return m;
 }
 
-NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, double h) {
+NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, double h, double growth) {
   if (!(r_hole > 0) || !(r > r_hole) || !(h > 0) || !(h < r - r_hole))
     throw InputError("ring_disc_with_hole: need 0 < hole radius < radius and 0 < element size < radius - hole radius");
-  const int rings = std::max(1, static_cast<int>(std::lround((r - r_hole) / h)));
+  if (!(growth >= 1.0 && growth <= 2.0)) throw InputError("ring_disc_with_hole: the growth ratio must be in [1, 2]");
+  // Ring widths w0 growth^k adding up to r - r_hole, the first about h; the element size of circle k is the mean
+  // width of the rings beside it (h itself for equal rings).
+  const double span = r - r_hole;
+  const int rings = growth == 1.0 ? std::max(1, static_cast<int>(std::lround(span / h)))
+                                  : std::max(1, static_cast<int>(std::lround(std::log1p(span * (growth - 1) / h) /
+                                                                             std::log(growth))));
+  const double w0 = growth == 1.0 ? span / rings : span * (growth - 1) / (std::pow(growth, rings) - 1);
+  std::vector<double> radius_of(rings + 1, r_hole), size_of(rings + 1, h);
+  for (int k = 1; k <= rings; ++k) {
+    radius_of[k] = growth == 1.0 ? r_hole + k * span / rings : radius_of[k - 1] + w0 * std::pow(growth, k - 1);
+    if (growth != 1.0) size_of[k] = w0 * std::pow(growth, std::min(k, rings - 1) - (k < rings ? 0.5 : 0.0));
+  }
+  if (growth != 1.0) size_of[0] = w0, radius_of[rings] = r;
   NamedMesh out;
   std::vector<int> first(rings + 2, 0), count(rings + 1, 0);
   std::vector<double> offset(rings + 1, 0.0);
-  for (int k = 0; k <= rings; ++k) {  // circle k: radius r_hole + k (r - r_hole) / rings
-    const double radius = r_hole + k * (r - r_hole) / rings;
-    count[k] = std::max(6, static_cast<int>(std::lround(2 * M_PI * radius / h)));
+  for (int k = 0; k <= rings; ++k) {
+    const double radius = radius_of[k];
+    count[k] = std::max(6, static_cast<int>(std::lround(2 * M_PI * radius / size_of[k])));
     offset[k] = k % 2 ? M_PI / count[k] : 0.0;
     first[k + 1] = first[k] + count[k];
     for (int m = 0; m < count[k]; ++m) {

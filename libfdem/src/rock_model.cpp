@@ -39,7 +39,7 @@ NamedMesh mesh_of_shape(const MeshSpec& s) {
     case MeshShape::rectangle: return gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h, s.joint_lines);
     case MeshShape::disc: return gmsh_disc(s.center[0], s.center[1], s.radius, h, s.joint_lines);
     case MeshShape::disc_with_hole:
-      if (s.ring_mesher) return ring_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h);
+      if (s.ring_mesher) return ring_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.ring_growth);
       return gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.joint_lines);
     case MeshShape::rectangle_with_hole:
       return gmsh_rectangle_with_hole(s.min[0], s.min[1], s.max[0], s.max[1], s.center[0], s.center[1], s.hole_radius, h);
@@ -155,7 +155,8 @@ RockModel build_rock_model(const RockModelSpec& spec) {
   if (mesh.shape != MeshShape::file)  // a built shape follows the pre-cut cracks
     for (const PreCutCrack& c : spec.cracks) mesh.joint_lines.push_back(c.segment);
   const std::vector<std::vector<Segment>> traces = joint_sets_traces(spec.joint_sets, spec.mesh);  // of each set
-  for (const std::vector<Segment>& set : traces) mesh.joint_lines.insert(mesh.joint_lines.end(), set.begin(), set.end());
+  if (mesh.shape != MeshShape::file)  // a built shape follows the joints; a file has its own edges
+    for (const std::vector<Segment>& set : traces) mesh.joint_lines.insert(mesh.joint_lines.end(), set.begin(), set.end());
   m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
   const std::vector<JointProperties> joints =
@@ -183,20 +184,20 @@ RockModel build_rock_model(const RockModelSpec& spec) {
     m.velocity_nodes.push_back(nodes);
   }
   // The edge slots of a named boundary group; `label` names the part that asked for it.
-  auto group_slots = [&](const std::string& label, const std::string& group_name) {
+  auto group_slots = [&](const std::string& key, const std::string& group_name) {
     const auto group = m.mesh.boundary_groups.find(group_name);
     if (group == m.mesh.boundary_groups.end()) {
       std::string names;
       for (const auto& [name, edges] : m.mesh.boundary_groups) names += (names.empty() ? "" : ", ") + name;
-      throw InputError(label + ".boundary = \"" + group_name + "\": the mesh has no such boundary group (it has: " + names +
+      throw InputError(key + " = \"" + group_name + "\": the mesh has no such boundary group (it has: " + names +
                        ")");
     }
     return boundary_slots(topo, group->second, group_name);
   };
-  for (const PressureLoad& p : spec.pressures) solver.set_edge_pressure(group_slots(p.label, p.boundary), p.pressure);
+  for (const PressureLoad& p : spec.pressures) solver.set_edge_pressure(group_slots(p.label + ".boundary", p.boundary), p.pressure);
   std::vector<int> viscous;
   for (const ViscousBoundary& v : spec.viscous_boundaries) {
-    const std::vector<int> slots = group_slots(v.label, v.boundary);
+    const std::vector<int> slots = group_slots(v.label + ".boundary", v.boundary);
     viscous.insert(viscous.end(), slots.begin(), slots.end());
   }
   if (!viscous.empty()) solver.set_viscous_boundary(viscous);
@@ -223,11 +224,27 @@ RockModel build_rock_model(const RockModelSpec& spec) {
         m.joint_set_of[j] = static_cast<int>(k);  // a later set wins where two meet
       }
     }
+    if (joints.empty() && !set.segments.empty())
+      throw InputError(set.label + ": no joint of the rock mesh lies along its segment (a mesh file needs edges along "
+                       "it; a built shape needs it inside the rock)");
     if (set.open)
       solver.break_joints(joints);
     else
       solver.set_joint_properties(joints, set.properties);
     m.set_joints.push_back(std::move(joints));
+  }
+  if (spec.in_situ) {
+    const InSituSpec& is = *spec.in_situ;
+    std::vector<int> held;
+    for (const std::string& group : is.held_boundaries) {
+      const std::vector<int> slots = group_slots(is.label + ".boundaries", group);
+      held.insert(held.end(), slots.begin(), slots.end());
+    }
+    try {
+      solver.set_in_situ_stress(is.stress, held);
+    } catch (const InputError& e) {
+      throw InputError(is.label + ": " + e.what());
+    }
   }
   std::vector<std::array<double, 2>> points;
   std::vector<double> until;
@@ -244,6 +261,17 @@ RockModel build_rock_model(const RockModelSpec& spec) {
       }
     }
     throw;
+  }
+  if (spec.in_situ && spec.in_situ->equilibrate) {
+    const InSituSpec& is = *spec.in_situ;
+    m.equilibrium = solver.equilibrate(is.equilibrium);
+    if (!m.equilibrium->converged)
+      throw InstabilityError(is.label + ": the rock did not come to rest under its in-situ stress in max_steps = " +
+                             std::to_string(is.equilibrium.max_steps) + " steps (" +
+                             std::to_string(m.equilibrium->checks) + " undamped checks failed, " +
+                             std::to_string(m.equilibrium->broken_joints) +
+                             " joints broken): raise max_steps, or check that the held boundaries and supports hold "
+                             "the rock (a free body under unbalanced loads never comes to rest)");
   }
   return m;
 }

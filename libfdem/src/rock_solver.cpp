@@ -124,6 +124,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   copy_from_host(a.triangle_params.eta, eta);
   a.node_loads.constraint.assign(nodes, 0), a.node_loads.v_prescribed.assign(nodes, Vec2{0.0, 0.0});
   a.node_loads.dashpot.assign(nodes, Mat2{0.0, 0.0, 0.0, 0.0});
+  a.node_loads.held.assign(nodes, Vec2{0.0, 0.0});
   copy_from_host(a.nodes.x, x), copy_from_host(a.nodes.y, y);
   a.nodes.vx.assign(nodes, 0.0), a.nodes.vy.assign(nodes, 0.0);
   for (DeviceVector<double>* f : {&a.forces.triangle_x, &a.forces.triangle_y, &a.forces.contact_x, &a.forces.contact_y,
@@ -160,6 +161,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.edge_loads.node_load.assign(3 * triangles_, Vec2{0.0, 0.0});
   copy_from_host(a.joint_params.nodes, joint_nodes_host_), copy_from_host(a.joint_params.strength, strength);
   copy_from_host(a.joint_params.length, joint_length);
+  a.joint_params.preload.assign(joints_, JointPreload{0.0, 0.0});
   a.joints.damage.assign(joints_, JointPointDamage{{0, 0, 0}});
   a.joints.separation.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
@@ -175,6 +177,7 @@ std::vector<JointStrength> RockSolver::joint_strengths() const { return to_host(
 
 void RockSolver::set_joint_properties(const std::vector<int>& joints, const JointProperties& q) {
   if (steps_ > 0) throw std::logic_error("RockSolver::set_joint_properties: only before the first step");
+  if (in_situ_set_) throw std::logic_error("RockSolver::set_joint_properties: before set_in_situ_stress()");
   std::vector<JointStrength> strength = to_host(a_->joint_params.strength);
   const std::vector<double> length = to_host(a_->joint_params.length);
   const double p_joint = options_.joint_penalty_factor * material_.youngs_modulus;
@@ -183,6 +186,143 @@ void RockSolver::set_joint_properties(const std::vector<int>& joints, const Join
     strength[j] = own_joint_strength(j, q, length[j], p_joint);
   }
   copy_from_host(a_->joint_params.strength, strength);
+}
+
+void RockSolver::set_in_situ_stress(const InSituStress& s, const std::vector<int>& held) {
+  if (steps_ > 0) throw std::logic_error("RockSolver::set_in_situ_stress: only before the first step");
+  detail::RockArrays& a = *a_;
+  const std::vector<double> x0 = to_host(a.node_params.x0), y0 = to_host(a.node_params.y0);
+  auto at = [&](int n) { return Vec2{x0[n], y0[n]}; };
+  const double lambda = material_.lame_lambda(), mu = material_.shear_modulus();
+  // Triangles: F = FX inv_f0 must be the prestretch F_s in the mesh's shape FX = F0, so inv_f0 = F0^-1 F_s.
+  std::vector<Mat2> inv_f0(triangles_);
+  for (int t = 0; t < triangles_; ++t) {
+    const Vec2 p0 = at(3 * t), p1 = at(3 * t + 1), p2 = at(3 * t + 2);
+    inv_f0[t] = edge_matrix(p0, p1, p2).inverse() * prestretch(s.at((p0.y + p1.y + p2.y) / 3.0), lambda, mu);
+  }
+  // Joints: the traction sigma n on face A (n out of A, t along a0 -> a1) is what the joint must put on it.
+  const std::vector<JointStrength> strength = to_host(a.joint_params.strength);
+  const std::vector<std::uint8_t> broken = to_host(a.joints.broken);
+  std::vector<JointPreload> preload(joints_, JointPreload{0.0, 0.0});
+  for (int j = 0; j < joints_; ++j) {
+    if (broken[j]) continue;  // a pre-cut crack or open joint carries it through contact once it closes
+    const Vec2 pa0 = at(joint_nodes_host_[j].a0), pa1 = at(joint_nodes_host_[j].a1);
+    const double h = std::hypot(pa1.x - pa0.x, pa1.y - pa0.y);
+    const Vec2 t{(pa1.x - pa0.x) / h, (pa1.y - pa0.y) / h}, n{t.y, -t.x};
+    const Mat2 sig = s.at(0.5 * (pa0.y + pa1.y));
+    const Vec2 sn{sig.a * n.x + sig.b * n.y, sig.c * n.x + sig.d * n.y};
+    try {
+      preload[j] = joint_preload(sn.x * n.x + sn.y * n.y, sn.x * t.x + sn.y * t.y, strength[j]);
+    } catch (const InputError& e) {
+      std::ostringstream os;
+      os << "joint " << j << " at (" << 0.5 * (pa0.x + pa1.x) << ", " << 0.5 * (pa0.y + pa1.y) << ") m: " << e.what();
+      throw InputError(os.str());
+    }
+  }
+  // Held boundary edges: traction sigma N (N the outward normal scaled by the edge's length), half per node.
+  std::vector<char> is_boundary(3 * static_cast<size_t>(triangles_), 0), done(is_boundary.size(), 0);
+  for (const BoundaryEdge& b : boundary_edges_) is_boundary[b.n0] = 1;
+  std::vector<std::uint8_t> c = to_host(a.node_loads.constraint);
+  std::vector<Vec2> load(node_count(), Vec2{0.0, 0.0});
+  for (int slot : held) {
+    if (slot < 0 || slot >= 3 * triangles_ || !is_boundary[slot])
+      throw InputError("in-situ stress: edge slot " + std::to_string(slot) + " is not an edge of the mesh boundary");
+    if (done[slot]) continue;
+    done[slot] = 1;
+    const int n0 = slot_first_node(slot), n1 = slot_second_node(slot);
+    const Vec2 N = edge_outward_normal(at(n0), at(n1));
+    const Mat2 sig = s.at(0.5 * (y0[n0] + y0[n1]));
+    const Vec2 half{0.5 * (sig.a * N.x + sig.b * N.y), 0.5 * (sig.c * N.x + sig.d * N.y)};
+    for (int n : {n0, n1}) {
+      load[n] = {load[n].x + half.x, load[n].y + half.y};
+      c[n] |= kHeldLoad;
+    }
+  }
+  copy_from_host(a.triangle_params.inv_f0, inv_f0);
+  copy_from_host(a.joint_params.preload, preload);
+  copy_from_host(a.node_loads.held, load);
+  copy_from_host(a.node_loads.constraint, c);
+  in_situ_set_ = true;
+  // The joints' state at rest (their tractions now carry the stress) and the elastic energy they hold.
+  joint_forces();
+  joint_stored_initial_ = energies().joint_stored;
+}
+
+namespace {
+//! Multiplies every node's velocity by f (the relaxation's damping, one step of it).
+struct ScaleVelocities {
+  double* vx;
+  double* vy;
+  double f;
+  BLAST_HD void operator()(index_t n) const {
+    vx[n] *= f;
+    vy[n] *= f;
+  }
+};
+}  // namespace
+
+EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
+  if (steps_ > 0) throw std::logic_error("RockSolver::equilibrate: only before the first step");
+  if (!(o.tolerance > 0) || o.max_steps < 1)
+    throw InputError("equilibration: the tolerance must be > 0 and max_steps >= 1");
+  detail::RockArrays& a = *a_;
+  const double dt = stable_dt_;
+  // Size of the model (its bounding box's diagonal), its slowest mode about a quarter shear wave over it.
+  const std::vector<double> x0 = to_host(a.node_params.x0), y0 = to_host(a.node_params.y0);
+  const auto [xlo, xhi] = std::minmax_element(x0.begin(), x0.end());
+  const auto [ylo, yhi] = std::minmax_element(y0.begin(), y0.end());
+  const double size = x0.empty() ? 1.0 : std::hypot(*xhi - *xlo, *yhi - *ylo);
+  const double omega = M_PI * material_.s_wave_speed() / (2 * size);
+  // Mass-proportional damping 2 omega: every mode's amplitude decays as exp(-omega t) (critical for the slowest).
+  const double keep = std::exp(-2 * omega * dt);
+  // The undamped check lasts two P-wave crossings.
+  const long window = std::max(10L, static_cast<long>(std::ceil(2.0 * size / (material_.p_wave_speed() * dt))));
+  auto elastic = [&] {
+    const RockEnergies e = energies();
+    return e.strain + e.joint_stored;
+  };
+  auto scale_velocities = [&](double f) {
+    for_each_index("fdem.equilibrate.damp", node_count(),
+                   ScaleVelocities{device_ptr(a.nodes.vx), device_ptr(a.nodes.vy), f});
+  };
+  EquilibriumReport r;
+  double reference = std::max(elastic(), 1e-300), window_peak = 0;
+  long checking = 0;  // steps into the undamped check (0: damping)
+  long quiet = 0;     // damped steps in a row below the tolerance (a check starts after half a window of them)
+  while (r.steps < o.max_steps) {
+    step(dt);
+    ++r.steps;
+    const double ratio = kinetic_energy() / reference;
+    if (checking > 0) {  // undamped: the rock must stay at rest for the whole window
+      window_peak = std::max(window_peak, ratio);
+      if (!(ratio <= o.tolerance)) {
+        checking = 0;  // not at rest yet: back to damping
+        continue;
+      }
+      if (++checking > window) {
+        r.converged = true;
+        break;
+      }
+      continue;
+    }
+    scale_velocities(keep);
+    if (r.steps % 64 == 0) reference = std::max(reference, elastic());
+    quiet = ratio <= o.tolerance ? quiet + 1 : 0;
+    if (2 * quiet >= window) checking = 1, quiet = 0, window_peak = ratio, ++r.checks;
+  }
+  r.kinetic_ratio = window_peak;
+  // The state reached starts the run: nodes at rest, clock and ledgers at zero.
+  scale_velocities(0.0);
+  time_ = 0, dt_prev_ = 0, steps_ = 0, last_speed_ = 0;
+  a.ledger.work.assign(node_count(), NodeWork{0, 0, 0, 0, 0, 0});
+  a.ledger.support.assign(node_count(), Vec2{0.0, 0.0});
+  a.triangles.dissipation.assign(triangles_, TriangleDissipation{0, 0});
+  a.probe_peak.assign(probes_, ProbePeak{0, 0, 0, 0});
+  const RockEnergies e = energies();
+  joint_stored_initial_ = e.joint_stored;
+  r.elastic_energy = e.strain + e.joint_stored;
+  r.broken_joints = e.broken_joints;
+  return r;
 }
 
 RockSolver::~RockSolver() = default;
@@ -583,19 +723,24 @@ std::vector<double> RockSolver::edge_pressures() const { return to_host(a_->edge
 std::vector<std::uint8_t> RockSolver::edge_exposure() const { return to_host(a_->edges.exposed); }
 std::vector<Vec2> RockSolver::node_loads() const { return to_host(a_->edge_loads.node_load); }
 
+double RockSolver::kinetic_energy() const {
+  const NodeMotion<Access::read> m = a_->nodes.read();
+  const NodeParams np = a_->node_params.view();
+  return reduce_sum("fdem.energy.kinetic", node_count(), 0.0, [=] BLAST_HD(index_t n) {
+    return 0.5 * np.mass[n] * (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n]);
+  });
+}
+
 RockEnergies RockSolver::energies() const {
   const detail::RockArrays& a = *a_;
   const NodeMotion<Access::read> m = a.nodes.read();
-  const NodeParams np = a.node_params.view();
   const TriangleParams tp = a.triangle_params.view();
   const NodeWork* work = device_ptr(a.ledger.work);
   const TriangleDissipation* dissipation = device_ptr(a.triangles.dissipation);
   const JointParams jp = a.joint_params.view();
   const JointState<Access::read> js = a.joints.read();
   RockEnergies e;
-  e.kinetic = reduce_sum("fdem.energy.kinetic", node_count(), 0.0, [=] BLAST_HD(index_t n) {
-    return 0.5 * np.mass[n] * (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n]);
-  });
+  e.kinetic = kinetic_energy();
   const double lambda = material_.lame_lambda(), mu = material_.shear_modulus();
   e.strain = reduce_sum("fdem.energy.strain", triangles_, 0.0, [=] BLAST_HD(index_t t) {
     Vec2 p[3];
@@ -616,7 +761,7 @@ RockEnergies RockSolver::energies() const {
       reduce_sum("fdem.energy.friction", triangles_, 0.0, [=] BLAST_HD(index_t t) { return dissipation[t].friction; });
   e.joint_stored = reduce_sum("fdem.energy.joints", joints_, 0.0,
                               [=] BLAST_HD(index_t j) { return joint_stored_energy(jp, js, static_cast<int>(j)); });
-  e.fracture_dissipated = e.joint_work - e.joint_stored;
+  e.fracture_dissipated = e.joint_work - (e.joint_stored - joint_stored_initial_);
   e.broken_joints = static_cast<int>(reduce_sum("fdem.broken", joints_, 0.0, [=] BLAST_HD(index_t j) {
     return js.broken[j] ? 1.0 : 0.0;
   }));
@@ -674,6 +819,7 @@ void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.previous_dt", dt_prev_);
   w.value("rock.stable_dt", stable_dt_);
   w.value("rock.last_speed", last_speed_);
+  if (joint_stored_initial_ != 0) w.value("rock.joint_stored_initial", joint_stored_initial_);
   w.value("rock.steps", steps_);
   w.value("rock.contact.rebuilds", rebuilds_);
   w.value("rock.contact.cell_size", cell_size_);
@@ -714,6 +860,7 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   dt_prev_ = scalar("rock.previous_dt");
   if (scalar("rock.stable_dt") != stable_dt_) r.fail("rock.stable_dt", "differs from this mesh's (another mesh?)");
   last_speed_ = scalar("rock.last_speed");
+  joint_stored_initial_ = r.has("rock.joint_stored_initial") ? scalar("rock.joint_stored_initial") : 0.0;
   cell_size_ = scalar("rock.contact.cell_size");
   buffer_ = scalar("rock.contact.buffer");
   travel_since_build_ = scalar("rock.contact.travel");
@@ -740,7 +887,7 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   const detail::RockArrays& a = *a_;
   const double T = triangles_;
   check_range(r, "rock.node_loads.constraint", to_host(a.node_loads.constraint), 0,
-              kPrescribedX | kPrescribedY | kViscousBoundary);
+              kPrescribedX | kPrescribedY | kViscousBoundary | kHeldLoad);
   check_range(r, "rock.edges.exposed", to_host(a.edges.exposed), 0, 2);
   check_range(r, "rock.joints.broken", to_host(a.joints.broken), 0, 1);
   std::vector<double> damage;

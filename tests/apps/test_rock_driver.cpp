@@ -222,3 +222,84 @@ TEST_CASE("Driver: a bar pushed at one end radiates rho c_p v0^2 H through a vis
   CHECK_THROWS_WITH(app::run_rock_case(c, log),
                     Catch::Contains("rock.viscous_boundary.0.boundary") && Catch::Contains("no such boundary group"));
 }
+
+TEST_CASE("Driver: in-situ stress on a holed disc, held and relaxed, explicit joints, and their bad input", "[app][rock][S2]") {
+  // A graded ring mesh around a hole, sigma_xx = -12, sigma_yy = -6 MPa held on the outer circle (taken from its
+  // viscous boundary): the run starts relaxed (log line) and stays at rest (the figures: S3, tests/fdem).
+  const fs::path dir = fresh_dir("in_situ");
+  fs::create_directories(dir);
+  const fs::path input = dir / "in_situ.toml";
+  std::ofstream(input) << "[rock]\npreset = \"paper_table2\"\n"
+                          "[rock.mesh]\nshape = \"disc_with_hole\"\nmesher = \"rings\"\ngrowth = 1.25\nradius = 0.3\n"
+                          "hole_radius = 0.05\nelement_size = 0.012\n"
+                          "[[rock.viscous_boundary]]\nboundary = \"outer\"\n"
+                          "[rock.in_situ_stress]\nsigma_xx = -12.0e6\nsigma_yy = -6.0e6\n"
+                          "[analysis]\nfragments = false\n"
+                          "[time]\nend = 1.0e-4\n"
+                          "[output]\nvtk = false\nmonitor_interval = 20\n";
+  const fs::path out = dir / "out";
+  auto read = [&](const std::vector<std::string>& overrides) {
+    std::vector<std::string> o = overrides;
+    o.push_back("output.directory=\"" + out.string() + "\"");
+    return app::read_case(app::load_input(input.string(), o));
+  };
+  const app::Case c = read({});
+  REQUIRE(c.rock.model.in_situ.has_value());
+  CHECK(c.rock.model.in_situ->held_boundaries == std::vector<std::string>{"outer"});
+  CHECK(c.rock.model.in_situ->stress.gradient[1] == 0.0);
+  std::ostringstream log;
+  app::run_rock_case(c, log);
+  INFO(log.str());
+  CHECK(log.str().find("in-situ stress: sigma_xx -1.2e+07, sigma_yy -6e+06, tau_xy 0 Pa at y = 0 m (per metre up: 0, 0, "
+                       "0 Pa/m), held on outer; at rest after") != std::string::npos);
+  const std::vector<double> kinetic = csv_column(out / "rock_series.csv", "kinetic_J_per_m");
+  const std::vector<double> strain = csv_column(out / "rock_series.csv", "strain_J_per_m");
+  REQUIRE(!kinetic.empty());
+  const double ke_max = *std::max_element(kinetic.begin(), kinetic.end());
+  std::printf("S2 driver: strain energy %.5g J/m at the start, largest kinetic energy over 0.1 ms %.3e of it\n",
+              strain.front(), ke_max / strain.front());
+  CHECK(ke_max <= 1e-6 * strain.front());
+  // Gravity sets the gradients of sigma_yy and tau_xy (equilibrium).
+  const app::Case g = read({"rock.gravity=[1.0, -9.81]"});
+  CHECK(g.rock.model.in_situ->stress.gradient[1] == Approx(9.81 * 2600.0));
+  CHECK(g.rock.model.in_situ->stress.gradient[2] == Approx(-2600.0));
+  // Bad input: one clear line naming the key.
+  CHECK_THROWS_WITH(read({"rock.in_situ_stress.tolerance=0.1"}), Catch::Contains("rock.in_situ_stress.tolerance"));
+  CHECK_THROWS_WITH(read({"rock.in_situ_stress.max_steps=0"}), Catch::Contains("rock.in_situ_stress.max_steps"));
+  CHECK_THROWS_WITH(read({"rock.in_situ_stress.sigma_xx=0.0", "rock.in_situ_stress.sigma_yy=0.0"}),
+                    Catch::Contains("rock.in_situ_stress") && Catch::Contains("zero"));
+  CHECK_THROWS_WITH(read({"rock.in_situ_stress.boundaries=[]"}), Catch::Contains("rock.in_situ_stress.boundaries"));
+  CHECK_THROWS_WITH(read({"rock.in_situ_stress.boundaries=[1]"}), Catch::Contains("rock.in_situ_stress.boundaries"));
+  CHECK_THROWS_WITH(read({"rock.in_situ_stress.sigma_yy=\"high\""}), Catch::Contains("rock.in_situ_stress.sigma_yy"));
+  CHECK_THROWS_WITH(read({"rock.mesh.growth=3.0"}), Catch::Contains("rock.mesh.growth"));
+  CHECK_THROWS_WITH(read({"rock.mesh.mesher=\"gmsh\"", "rock.mesh.growth=1.1"}), Catch::Contains("rock.mesh.growth"));
+  {
+    app::Case bad = read({"rock.in_situ_stress.boundaries=[\"rim\"]", "time.end=1e-6"});
+    std::ostringstream l;
+    CHECK_THROWS_WITH(app::run_rock_case(bad, l), Catch::Contains("rock.in_situ_stress.boundaries = \"rim\"") &&
+                                                    Catch::Contains("outer"));
+  }
+  {  // a joint that cannot carry its in-situ traction is named: tension above f_t
+    app::Case bad = read({"rock.in_situ_stress.sigma_xx=8e6", "time.end=1e-6"});
+    std::ostringstream l;
+    CHECK_THROWS_WITH(app::run_rock_case(bad, l), Catch::Contains("rock.in_situ_stress: joint") &&
+                                                    Catch::Contains("tensile strength"));
+  }
+  // Explicit joints (on the uniaxial specimen, a Gmsh rectangle): a closed one with its own strength, an open one.
+  auto read_uniaxial = [](const std::vector<std::string>& overrides) {
+    return app::read_case(app::load_input(uniaxial, overrides));
+  };
+  const app::Case j = read_uniaxial({"rock.joint=[{from=[0.0, 0.03], to=[0.05, 0.05], cohesion=2e6, friction_angle=20.0}, "
+                                     "{from=[0.01, 0.08], to=[0.04, 0.08], open=true}]"});
+  REQUIRE(j.rock.model.joint_sets.size() == 2);
+  CHECK(j.rock.model.joint_sets[0].segments.size() == 1);
+  CHECK(j.rock.model.joint_sets[0].properties.cohesion == 2e6);
+  CHECK(j.rock.model.joint_sets[0].properties.friction_angle == Approx(20 * M_PI / 180));
+  CHECK(j.rock.model.joint_sets[1].open);
+  CHECK_THROWS_WITH(read_uniaxial({"rock.joint=[{from=[0.0, 0.03], to=[0.08, 0.05]}]"}),
+                    Catch::Contains("rock.joint.0") && Catch::Contains("outside the rock"));
+  CHECK_THROWS_WITH(read_uniaxial({"rock.joint=[{from=[0.0, 0.03], to=[0.05, 0.05], open=true, cohesion=1e6}]"}),
+                    Catch::Contains("rock.joint.0.cohesion"));
+  CHECK_THROWS_WITH(read_uniaxial({"rock.joint=[{from=[0.0, 0.03], to=[0.05, 0.05], initial_aperture=1e-4}]"}),
+                    Catch::Contains("rock.joint.0.initial_aperture"));
+}

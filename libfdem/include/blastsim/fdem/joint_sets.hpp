@@ -29,6 +29,9 @@ struct JointSetSpec {
   bool open = false;            //!< broken from the start (no strength; contact and friction only)
   double initial_aperture = 0;  //!< [m] of open joints: crack gas room (coupled runs)
   JointProperties properties;   //!< strength of closed joints
+  //! Explicit joints (a [[rock.joint]]): when not empty these segments [m] are the set's traces as given (the
+  //! pattern fields above are not used); a built shape follows them, a mesh file needs edges along them.
+  std::vector<Segment> segments;
 };
 
 //! The traces of `set` clipped to the rock of `shape` (a built shape: rectangle, disc, and those with holes),
@@ -36,7 +39,7 @@ struct JointSetSpec {
 //! So that the mesh needs no slivers, with a clearance of 2 min_length (an element): a line that runs that
 //! close to the outline along its length gets no traces, a hole that a line meets at a shallow angle or misses
 //! by less is cut out with that much to spare, and a trace end that close to the outline or a cut moves onto
-//! it (ends near another set's traces: snap_trace_ends()). Throws InputError
+//! it (ends near another set's traces: snap_trace_ends()). A set of explicit segments returns them. Throws InputError
 //! naming set.label for a bad spacing, persistence or trace length, or a mesh file (no outline to clip to).
 std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& shape, double min_length);
 

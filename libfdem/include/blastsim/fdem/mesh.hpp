@@ -68,7 +68,9 @@ void perturb_mesh(TriangleMesh& mesh, double fraction, std::uint64_t seed, const
 //! A disc of radius r centred at (cx, cy) with a concentric hole of radius r_hole, paved in rings without
 //! Gmsh (for machines that lack it): round((r - r_hole) / h) rings of equal width, each circle divided into
 //! round(2 pi radius / h) equal arcs (every other circle turned by half an arc), neighbouring circles joined
-//! by a merge walk in angle, so triangles have sides near h. Groups outer, hole.
-NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, double h);
+//! by a merge walk in angle, so triangles have sides near h. Groups outer, hole. With `growth` > 1 (at most 2)
+//! the rings widen outwards by that ratio each, the first about h wide, and each circle is divided into arcs
+//! about as long as the rings beside it are wide: a mesh graded from h at the hole (few elements far out).
+NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, double h, double growth = 1.0);
 
 }  // namespace blastsim::fdem

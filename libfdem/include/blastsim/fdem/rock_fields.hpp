@@ -12,6 +12,7 @@
 
 #include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/core/access.hpp"
+#include "blastsim/fdem/in_situ_stress.hpp"
 #include "blastsim/fdem/joint_kernels.hpp"
 #include "blastsim/fdem/rock_types.hpp"
 #include "blastsim/fdem/triangle_kernels.hpp"
@@ -26,15 +27,16 @@ struct NodeWork {
   double joint;     //!< done on the cohesive joints (the negative of their forces' work)
   double contact;   //!< done on the contacts
   double support;   //!< prescribed-velocity supports
-  double gravity;
+  double gravity;   //!< dead loads: gravity and the in-situ tractions of held boundaries
   double boundary;  //!< viscous-boundary dashpots (<= 0: the energy the waves carried out of the model)
 };
 }  // namespace blastsim::fdem
 BLASTSIM_CHECKPOINT_REALS(blastsim::fdem::NodeWork)
 namespace blastsim::fdem {
 
-//! Bits of NodeLoads::constraint: velocity prescribed along x, along y; node on a viscous boundary.
-inline constexpr std::uint8_t kPrescribedX = 1, kPrescribedY = 2, kViscousBoundary = 4;
+//! Bits of NodeLoads::constraint: velocity prescribed along x, along y; node on a viscous boundary; node on a
+//! boundary held by the in-situ stress (a dead load).
+inline constexpr std::uint8_t kPrescribedX = 1, kPrescribedY = 2, kViscousBoundary = 4, kHeldLoad = 8;
 
 //! Cauchy stress of a constant-strain triangle [Pa].
 struct TriangleStress {
@@ -94,13 +96,15 @@ struct PairLoad {
 #define BLASTSIM_ROCK_JOINT_PARAMS(X)                           \
   X(JointNodes, nodes, "its four nodes")                        \
   X(JointStrength, strength, "peak stresses and lengths of the joint law") \
-  X(double, length, "initial length [m]")
+  X(double, length, "initial length [m]")                       \
+  X(JointPreload, preload, "opening and slip added so the in-situ stress is carried at rest [m] (0: none)")
 
 // ---- loads: set by the host between steps, read by the kernels -------------------------------------------
 #define BLASTSIM_ROCK_NODE_LOADS(X)                                                            \
   X(std::uint8_t, constraint, "bit 0: x velocity prescribed; bit 1: y; bit 2: viscous boundary")   \
   X(Vec2, v_prescribed, "prescribed velocity [m/s]")                                               \
-  X(Mat2, dashpot, "viscous-boundary coefficients C [N s/m2] (force -C v), read where bit 2 is set")
+  X(Mat2, dashpot, "viscous-boundary coefficients C [N s/m2] (force -C v), read where bit 2 is set") \
+  X(Vec2, held, "in-situ traction of a held boundary on the node [N/m] (a dead load), read where bit 3 is set")
 
 #define BLASTSIM_ROCK_EDGE_LOADS(X)                                                                \
   X(double, pressure, "pressure on the edge when exposed [Pa] (set_edge_pressure(), or a coupler each step)") \

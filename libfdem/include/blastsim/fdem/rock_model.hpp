@@ -37,6 +37,7 @@ struct MeshSpec {
   std::array<double, 2> min{}, max{};  //!< [m] corners of a rectangle
   std::string file;                  //!< .msh path (MeshShape::file)
   bool ring_mesher = false;          //!< disc_with_hole by ring_disc_with_hole() instead of Gmsh
+  double ring_growth = 1.0;          //!< of the ring mesher: width ratio of neighbouring rings, in [1, 2]
   std::vector<Segment> joint_lines;  //!< [m] segments the Gmsh mesh follows: a row of joints along each
   //! [m] holes of rectangle_with_holes / disc_with_holes; boundary groups hole0, hole1, ... in this order
   std::vector<Circle> holes;
@@ -98,6 +99,16 @@ struct PreCutCrack {
   double initial_aperture = 0;
 };
 
+//! The in-situ stress of a rock model, the boundary groups that hold it (where the model cuts the rock mass) and
+//! the equilibration that brings the rock to rest under it before the first step.
+struct InSituSpec {
+  std::string label = "in_situ_stress";  //!< how messages name it
+  InSituStress stress;
+  std::vector<std::string> held_boundaries;  //!< boundary groups that carry the in-situ traction
+  bool equilibrate = true;
+  EquilibriumOptions equilibrium;
+};
+
 //! Everything a rock model is made of.
 struct RockModelSpec {
   MeshSpec mesh;
@@ -116,6 +127,8 @@ struct RockModelSpec {
   //! Natural joint sets (joint_sets.hpp): a built shape follows their traces, whose joints take the set's
   //! properties (over the heterogeneous draw) or start broken (open sets).
   std::vector<JointSetSpec> joint_sets;
+  //! In-situ stress (set after the joints' properties, equilibrated last); absent: the rock starts unstressed.
+  std::optional<InSituSpec> in_situ;
 };
 
 //! The mesh, its FDEM topology and the solver, with the nodes of each velocity load.
@@ -128,9 +141,12 @@ struct RockModel {
   std::vector<std::vector<int>> set_joints;    //!< the joints of each joint set (spec.joint_sets' order)
   //! The set of each joint (-1: none), when spec.joint_sets is not empty.
   std::vector<int> joint_set_of;
+  //! How the equilibration under the in-situ stress went (when there was one).
+  std::optional<EquilibriumReport> equilibrium;
 };
 //! Builds the model. Throws InputError: a velocity load's box without nodes, a boundary group the mesh lacks
-//! (listing those it has), a probe outside the rock, a pre-cut crack with no joint along its segment.
+//! (listing those it has), a probe outside the rock, a pre-cut crack with no joint along its segment, a joint that
+//! cannot carry its in-situ traction; InstabilityError: the rock did not come to rest under its in-situ stress.
 RockModel build_rock_model(const RockModelSpec& spec);
 
 //! Mean length [m] of the joints of a topology (0 without joints).

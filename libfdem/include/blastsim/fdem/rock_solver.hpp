@@ -10,6 +10,7 @@
 #pragma once
 
 #include "blastsim/fdem/heterogeneity.hpp"
+#include "blastsim/fdem/in_situ_stress.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
@@ -146,6 +147,21 @@ class RockSolver {
   //! Throws InputError for a joint that does not exist or properties the joint law cannot take,
   //! std::logic_error after a step.
   void set_joint_properties(const std::vector<int>& joints, const JointProperties& q);
+  //! Puts the in-situ stress `s` into the rock before the first step, after the joints' own properties
+  //! (docs/fdem-solver.md, "In-situ stress"): each triangle's stress-free shape becomes the one its in-situ stress
+  //! (at its centroid) stretches to the mesh (prestretch(), so the stress turns with the triangle and a released
+  //! piece relaxes), each intact joint starts at the opening and slip whose tractions carry sigma n across it (at
+  //! its middle; joint_preload()), and the boundary edge slots `held` (where the model cuts a rock mass that goes
+  //! on) carry the traction sigma n as a dead load, half on each node. A rock without other free surfaces then
+  //! starts at rest; holes and free faces need equilibrate(). Throws InputError for a held slot that is not a
+  //! mesh-boundary edge or a joint that cannot carry its traction (naming it), std::logic_error after a step.
+  void set_in_situ_stress(const InSituStress& s, const std::vector<int>& held);
+  //! Brings the rock to rest under its loads before the first step (viscous dynamic relaxation: EquilibriumOptions), then
+  //! starts the clock again: time and steps zero, every node at rest, the work ledgers, dissipations and probe
+  //! peaks cleared (joint damage stays). The state reached is the initial state of the run.
+  EquilibriumReport equilibrate(const EquilibriumOptions& options = {});
+  //! Kinetic energy [J/m] of the nodes (one reduction).
+  double kinetic_energy() const;
   //! Each joint's strength parameters as the joint law uses them (host copy; heterogeneous rock shows its draw).
   std::vector<JointStrength> joint_strengths() const;
   //! Sets velocity probes at points [m] of the initial mesh (replacing any earlier set; their peaks start at
@@ -174,6 +190,8 @@ class RockSolver {
   std::vector<JointNodes> joint_nodes_host_;
   std::vector<int> node_vertex_;
   double stable_dt_ = 0, time_ = 0, pressure_scale_ = 1.0, dt_prev_ = 0;
+  double joint_stored_initial_ = 0;  // [J/m] the joints' elastic energy at the start (in-situ preload)
+  bool in_situ_set_ = false;
   long steps_ = 0, rebuilds_ = 0;
   std::unique_ptr<detail::RockArrays> a_;  // every device array (rock_storage.hpp)
   // contact broad phase: uniform grid (cell size, origin, cells), buffer, pairs, travel since the last build

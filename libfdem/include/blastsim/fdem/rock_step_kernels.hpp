@@ -160,6 +160,10 @@ struct JointForceKernel {
     }
     const JointStrength strength = params.strength[j];
     const double length0 = params.length[j];
+    // In-situ stress: the joint starts at the opening and slip whose tractions carry it (joint_preload()). No
+    // addition without one, so a joint without in-situ stress keeps the same bits (signed zeros included).
+    const JointPreload pre = params.preload[j];
+    const bool preloaded = pre.opening != 0.0 || pre.slip != 0.0;
     const Vec2 pa0 = nodes.position(a0), pa1 = nodes.position(a1);
     const Vec2 pb0 = nodes.position(b0), pb1 = nodes.position(b1);
     // Mean direction of the two faces (both run a0 -> a1), and the normal pointing out of face A.
@@ -178,7 +182,8 @@ struct JointForceKernel {
       const Vec2 xa{pa0.x + xi[q] * (pa1.x - pa0.x), pa0.y + xi[q] * (pa1.y - pa0.y)};
       const Vec2 xb{pb1.x + xi[q] * (pb0.x - pb1.x), pb1.y + xi[q] * (pb0.y - pb1.y)};
       const Vec2 d{xb.x - xa.x, xb.y - xa.y};
-      const double o = d.x * n.x + d.y * n.y, s = d.x * t.x + d.y * t.y;
+      double o = d.x * n.x + d.y * n.y, s = d.x * t.x + d.y * t.y;
+      if (preloaded) o += pre.opening, s += pre.slip;
       const JointTraction tr = joint_traction(o, s, strength, damage.point[q]);
       damage.point[q] = tr.damage;
       separation.normal[q] = o;
@@ -418,7 +423,7 @@ struct NodeSpeedPeak {
 };
 
 //! Node update (symplectic Euler, docs/fdem-solver.md): gathers the node's forces (its triangle, the joints
-//! on its two edges, contact, pressure on its triangle's exposed edges, gravity), takes its viscous-boundary
+//! on its two edges, contact, pressure on its triangle's exposed edges, gravity and held in-situ tractions), takes its viscous-boundary
 //! dashpots implicitly, applies prescribed velocities, moves the node, and accumulates the work of each kind of
 //! force by the trapezoid rule: the force at x_n works over half of the previous displacement and half of the
 //! next one, so linear springs' work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m
@@ -439,13 +444,15 @@ struct NodeUpdateKernel {
     const SlotForce& ending = joint_force[slot_ending_at(n)];  // the slot that ends at n
     const double m = params.mass[n];
     const Vec2 f_joint{starting.first.x + ending.second.x, starting.first.y + ending.second.y};
-    const Vec2 f_grav{m * gx, m * gy}, f_pres{forces.pressure_x[n], forces.pressure_y[n]};
-    const Vec2 f_ext{f_grav.x + f_pres.x, f_grav.y + f_pres.y};
+    const std::uint8_t cons = loads.constraint[n];
+    Vec2 f_dead{m * gx, m * gy};  // gravity, and the in-situ traction where the node's boundary is held
+    if (cons & kHeldLoad) f_dead = {f_dead.x + loads.held[n].x, f_dead.y + loads.held[n].y};
+    const Vec2 f_pres{forces.pressure_x[n], forces.pressure_y[n]};
+    const Vec2 f_ext{f_dead.x + f_pres.x, f_dead.y + f_pres.y};
     const Vec2 f_con{forces.contact_x[n], forces.contact_y[n]};
     const Vec2 f{forces.triangle_x[n] + f_joint.x + f_con.x + f_ext.x, forces.triangle_y[n] + f_joint.y + f_con.y + f_ext.y};
     const double vx = nodes.vx[n], vy = nodes.vy[n];
     Vec2 v{vx + f.x / m * dt, vy + f.y / m * dt};
-    const std::uint8_t cons = loads.constraint[n];
     Vec2 f_bnd{0, 0};  // viscous boundary
     Mat2 C{0, 0, 0, 0};
     if (cons & kViscousBoundary) {
@@ -472,7 +479,7 @@ struct NodeUpdateKernel {
     w.joint -= f_joint.x * d.x + f_joint.y * d.y;
     w.contact -= f_con.x * d.x + f_con.y * d.y;
     w.support += support.x * d.x + support.y * d.y;
-    w.gravity += f_grav.x * d.x + f_grav.y * d.y;
+    w.gravity += f_dead.x * d.x + f_dead.y * d.y;
     w.boundary += (f_bnd.x * v.x + f_bnd.y * v.y) * dt;  // the dashpot's power at the velocity it acted on
   }
 };

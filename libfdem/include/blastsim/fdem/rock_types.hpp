@@ -32,7 +32,7 @@ struct RockEnergies {
   double strain = 0;               //!< elastic energy of the triangles (hyperelastic potential of the stress)
   double joint_work = 0;           //!< work done on the cohesive joints (stored + dissipated)
   double joint_stored = 0;         //!< elastic energy still held by the joints (secant estimate)
-  double fracture_dissipated = 0;  //!< joint_work - joint_stored
+  double fracture_dissipated = 0;  //!< joint_work - (joint_stored - the joints' stored energy at the start)
   double contact_work = 0;         //!< work done on contacts (penalty energy + friction)
   double friction_dissipated = 0;  //!< of which dissipated by Coulomb friction
   double damping_dissipated = 0;   //!< by the triangles' viscous damping
