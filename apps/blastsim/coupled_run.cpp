@@ -470,7 +470,11 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
   const CouplingSettings& k = c.coupling;
   if (c.output.vtk && !cip::vtk_available())
     throw InputError("output.vtk = true, but this build has no VTK: set output.vtk = false (CSV output still works)");
-  fdem::RockModel model = make_rock_model(c, options.restart);
+  if (c.rock.model.in_situ && c.rock.model.in_situ->equilibrate && !options.restart)
+    log << fmt::format("in-situ stress: relaxing the rock to rest before t = 0 (at most {} steps)\n",
+                       c.rock.model.in_situ->equilibrium.max_steps)
+        << std::flush;
+  fdem::RockModel model = make_rock_model(c, options.restart, &log);
   fdem::RockSolver& rock = *model.solver;
   const double rock_dt = rock_time_step(c, rock);  // checks a fixed dt against the rock's stable step
   cip::GasSolver gas(g.grid, g.materials(), g.solver);

@@ -13,9 +13,17 @@
 
 namespace blastsim::app {
 
-fdem::RockModel make_rock_model(const Case& c, bool restart) {
+fdem::RockModel make_rock_model(const Case& c, bool restart, std::ostream* log) {
   fdem::RockModelSpec spec = c.rock.model;
   if (restart && spec.in_situ) spec.in_situ->equilibrate = false;
+  if (spec.in_situ && log) {
+    const double tolerance = spec.in_situ->equilibrium.tolerance;
+    spec.in_situ->equilibrium.progress = [log, tolerance](long steps, double ratio) {
+      *log << fmt::format("  relaxing: {} steps, kinetic / elastic energy {:.3e} (at rest below {:g} for two P-wave "
+                          "crossings)\n", steps, ratio, tolerance)
+           << std::flush;
+    };
+  }
   for (size_t k = 0; k < c.probes.rock_points.size(); ++k) {
     const ProbeSettings::RockPoint& p = c.probes.rock_points[k];
     spec.probes.push_back({fmt::format("probe.rock_point.{}", k), p.position, p.until});
@@ -185,6 +193,14 @@ void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& l
   zones_.clear();
   for (const AnalysisSettings::Hole& h : a.holes)
     zones_.push_back(fdem::damage_zone(s, h.center, h.radius, ring_width_, a.crushed_fraction, h.behind));
+  if (!zones_.empty())  // crack_rose.csv: each hole's broken length by direction, at the latest snapshot
+    write_atomically((dir_ / "crack_rose.csv").string(), [&](std::ostream& out) {
+      out << "time_s,hole,sector_start_deg,sector_end_deg,crack_length_m\n";
+      for (size_t k = 0; k < zones_.size(); ++k)
+        for (int q = 0; q < fdem::kRoseSectors; ++q)
+          out << fmt::format("{:.9e},{},{},{},{:.9e}\n", analysed_at_, k, q * 360 / fdem::kRoseSectors,
+                             (q + 1) * 360 / fdem::kRoseSectors, zones_[k].crack_rose[q]);
+    });
   if (probes_) {  // ppv.csv: the peak so far at each probe, with its distance from the first hole
     const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
     write_atomically((dir_ / "ppv.csv").string(), [&](std::ostream& out) {

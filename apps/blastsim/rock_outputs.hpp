@@ -21,8 +21,9 @@ namespace blastsim::app {
 
 //! The rock model of a case (fdem::build_rock_model() with the case's rock probes), checked against the case
 //! (check_against_mesh()).
-//! A restart skips the equilibration under the in-situ stress (the checkpoint holds the state it reached).
-fdem::RockModel make_rock_model(const Case& c, bool restart = false);
+//! A restart skips the equilibration under the in-situ stress (the checkpoint holds the state it reached); `log`,
+//! when given, gets the equilibration's progress lines.
+fdem::RockModel make_rock_model(const Case& c, bool restart = false, std::ostream* log = nullptr);
 //! InputError when what the case places in the rock does not fit its mesh: an [[analysis.hole]] centre outside
 //! the mesh's bounding box, damage rings wider than the rock, a [[charge]] whose centre a triangle holds.
 void check_against_mesh(const Case& c, const fdem::TriangleMesh& mesh);

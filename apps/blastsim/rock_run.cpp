@@ -78,7 +78,11 @@ class RockRunOutputs : public RunOutputs {
 }  // namespace
 
 void run_rock_case(const Case& c, std::ostream& log, const RunOptions& options) {
-  fdem::RockModel model = make_rock_model(c);
+  if (c.rock.model.in_situ && c.rock.model.in_situ->equilibrate)
+    log << fmt::format("in-situ stress: relaxing the rock to rest before t = 0 (at most {} steps)\n",
+                       c.rock.model.in_situ->equilibrium.max_steps)
+        << std::flush;
+  fdem::RockModel model = make_rock_model(c, false, &log);
   fdem::RockSolver& solver = *model.solver;
   const double dt = rock_time_step(c, solver);
   log << fmt::format("rock: {} triangles, {} joints, {} boundary edges; stable step {:.4g} s, dt {:.4g} s, {} steps\n",

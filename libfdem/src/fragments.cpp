@@ -369,6 +369,18 @@ DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& cente
     if (crushed) z.crushed_radius = outer;
     if (cracked) z.cracked_radius = outer;
   }
+  // Crack rose: broken length by the direction of the joint's middle from the centre, within the cracked zone.
+  for (size_t j = 0; j < s.joint_nodes.size(); ++j) {
+    if (!s.joint_broken[j]) continue;
+    const int a = s.joint_nodes[j][0], b = s.joint_nodes[j][1];
+    const double mx = 0.5 * (s.x0[a] + s.x0[b]) - center[0], my = 0.5 * (s.y0[a] + s.y0[b]) - center[1];
+    const double r = std::hypot(mx, my);
+    if (r < hole_radius || r > z.cracked_radius || mx * behind[0] + my * behind[1] < 0) continue;
+    double angle = std::atan2(my, mx);
+    if (angle < 0) angle += 2 * M_PI;
+    const int k = std::min(kRoseSectors - 1, static_cast<int>(angle / (2 * M_PI / kRoseSectors)));
+    z.crack_rose[k] += std::hypot(s.x0[b] - s.x0[a], s.y0[b] - s.y0[a]);
+  }
   return z;
 }
 

@@ -293,6 +293,7 @@ EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
     step(dt);
     ++r.steps;
     const double ratio = kinetic_energy() / reference;
+    if (o.progress && o.progress_interval > 0 && r.steps % o.progress_interval == 0) o.progress(r.steps, ratio);
     if (checking > 0) {  // undamped: the rock must stay at rest for the whole window
       window_peak = std::max(window_peak, ratio);
       if (!(ratio <= o.tolerance)) {

@@ -104,7 +104,7 @@ TEST_CASE("A shrunk bench fires each charge at its delay, and a restart before a
               "us): %d of 5 files identical\n", steps, steps - 3, identical);
 }
 
-TEST_CASE("The jointed bench reads its joint sets and heterogeneity, and bad joint-set keys give one clear error",
+TEST_CASE("The jointed bench reads its joint sets, heterogeneity and in-situ stress, and bad joint-set keys give one clear error",
           "[app][rock][jointset][bad]") {
   const std::string jointed = std::string(BLASTSIM_EXAMPLES_DIR) + "/jointed_bench/jointed_bench.toml";
   auto read_jointed = [&](const std::vector<std::string>& overrides) {
@@ -118,6 +118,11 @@ TEST_CASE("The jointed bench reads its joint sets and heterogeneity, and bad joi
   CHECK(c.rock.model.joint_sets[1].open);
   CHECK(c.rock.model.joint_sets[1].spacing == 0.08);
   CHECK(c.rock.model.heterogeneity.has_value());
+  // Its in-situ stress: 5 MPa along the row, held where the viscous boundaries cut the rock mass.
+  REQUIRE(c.rock.model.in_situ.has_value());
+  CHECK(c.rock.model.in_situ->stress.at_reference[0] == -5.0e6);
+  CHECK(c.rock.model.in_situ->held_boundaries == std::vector<std::string>{"bottom", "left", "right"});
+  CHECK(c.probes.rock_points.size() == 4);
   CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.spacing=0.001"}), Catch::Contains("rock.joint_set.0.spacing"));
   CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.angle=200"}), Catch::Contains("rock.joint_set.0.angle"));
   CHECK_THROWS_WITH(read_jointed({"rock.joint_set.0.persistence=1.5"}), Catch::Contains("rock.joint_set.0.persistence"));

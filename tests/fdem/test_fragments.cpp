@@ -276,6 +276,21 @@ TEST_CASE("A5: damage per triangle and the crushed and cracked zones around a ho
   CHECK(std::fabs(ahead.cracked_radius - r2) <= w);
   CHECK(std::fabs(back.cracked_radius - r1) <= w);
   CHECK(std::fabs(back.crushed_radius - r1) <= w);
+  // Crack rose: the crushed disc spreads over all twelve sectors alike; the crack along +x adds its length (the
+  // broken joints beyond r1) to the sectors on either side of +x (0-30 and 330-360 deg).
+  double crack = 0, crushed = 0;
+  for (int j : broken) {
+    const int n0 = snap.joint_nodes[j][0], n1 = snap.joint_nodes[j][1];
+    const double len = std::hypot(snap.x0[n1] - snap.x0[n0], snap.y0[n1] - snap.y0[n0]);
+    (std::hypot(0.5 * (snap.x0[n0] + snap.x0[n1]), 0.5 * (snap.y0[n0] + snap.y0[n1])) < r1 ? crushed : crack) += len;
+  }
+  double others = 0, total = 0;
+  for (int q = 0; q < kRoseSectors; ++q) total += z.crack_rose[q], others += (q == 0 || q == 11) ? 0.0 : z.crack_rose[q];
+  const double excess = z.crack_rose[0] + z.crack_rose[11] - others / 5;  // over the crushed disc's share
+  std::printf("A5: crack rose: total %.4f m (broken %.4f m), sectors at +x %.4f m, the other ten %.4f m; excess at +x "
+              "%.4f m vs the crack's %.4f m\n", total, crack + crushed, z.crack_rose[0] + z.crack_rose[11], others, excess, crack);
+  CHECK(std::fabs(total - (crack + crushed)) <= 1e-12 * total);
+  CHECK(std::fabs(excess - crack) <= 0.1 * crack);
   const std::vector<double> d = triangle_damage(snap);
   for (int t = 0; t < topo.triangle_count(); ++t) {
     double expected = 0;

@@ -100,11 +100,16 @@ std::vector<double> triangle_damage(const RockSnapshot& s);
 //! to the hole radius when the zone is empty. With a nonzero `behind` direction only the joints in the half
 //! plane (m - centre) . behind >= 0 count: in a bench, the rock behind a hole (away from the free face), whose
 //! damage is the depth of the back break.
+//! Its crack rose: the broken joint length [m] within the cracked zone by the direction of each joint's middle
+//! from the centre, in kRoseSectors sectors of 30 deg counter-clockwise from +x (sector k: [30 k, 30 k + 30)
+//! deg); radial cracks that run along the major principal stress fill the sectors on its axis.
+inline constexpr int kRoseSectors = 12;
 struct DamageZone {
   std::array<double, 2> center{};
   double hole_radius = 0;
   double crushed_radius = 0;
   double cracked_radius = 0;
+  std::array<double, kRoseSectors> crack_rose{};
 };
 DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& center, double hole_radius, double ring_width,
                        double crushed_fraction = 0.5, const std::array<double, 2>& behind = {0.0, 0.0});

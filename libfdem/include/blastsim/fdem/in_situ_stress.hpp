@@ -7,6 +7,7 @@
 #include "blastsim/fdem/triangle_kernels.hpp"
 
 #include <array>
+#include <functional>
 
 namespace blastsim::fdem {
 
@@ -49,6 +50,9 @@ JointPreload joint_preload(double normal, double shear, const JointStrength& str
 struct EquilibriumOptions {
   double tolerance = 1e-8;  //!< kinetic / elastic energy [-]
   long max_steps = 200000;
+  //! Called every `progress_interval` steps with the steps so far and the kinetic / elastic energy (a log line).
+  std::function<void(long, double)> progress;
+  long progress_interval = 10000;
 };
 //! What an equilibration did.
 struct EquilibriumReport {
