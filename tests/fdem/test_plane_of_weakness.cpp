@@ -1,6 +1,7 @@
 //! \file test_plane_of_weakness.cpp
 //! \brief Plane of weakness, docs/validation.md P1: the uniaxial strength of a specimen cut by one weak joint at
 //! angle beta against Jaeger's single-plane-of-weakness theory (Jaeger 1960), the intact rock's where it governs.
+#include "blastsim/fdem/rock_analysis.hpp"
 #include "blastsim/fdem/rock_model.hpp"
 #include "catch.hpp"
 
@@ -29,7 +30,8 @@ struct WeakPlaneResult {
 //! normal at beta from the load axis (the plane at beta from the horizontal), cohesion c_w, friction phi_w;
 //! beta < 0: no joint (the intact rock). `intact_plane`: the joint keeps the rock's own properties (the same mesh,
 //! no weakness: the intact strength of that mesh).
-WeakPlaneResult compress(double beta, double c_w, double phi_w, bool intact_plane = false) {
+//! `confining` [Pa]: a pressure on both sides (sigma_3), raised over the first 0.5 ms (half cosine).
+WeakPlaneResult compress(double beta, double c_w, double phi_w, bool intact_plane = false, double confining = 0) {
   const double W = 0.05, H = 0.15, v = 0.05;
   RockModelSpec spec;
   spec.material = RockMaterial::paper_table2();
@@ -41,6 +43,10 @@ WeakPlaneResult compress(double beta, double c_w, double phi_w, bool intact_plan
   spec.velocities.push_back({"top", {-1.0, H - 1e-9}, {1.0, 1.0}, {0.0, -v}, false, true});
   spec.velocities.push_back({"bottom", {-1.0, -1.0}, {1.0, 1e-9}, {0.0, 0.0}, false, true});
   spec.velocities.push_back({"corner", {-1.0, -1.0}, {1e-9, 1e-9}, {0.0, 0.0}, true, false});
+  if (confining > 0) {
+    spec.pressures.push_back({"left", "left", confining});
+    spec.pressures.push_back({"right", "right", confining});
+  }
   if (beta >= 0) {
     JointSetSpec joint;
     joint.label = "weak plane";
@@ -65,6 +71,7 @@ WeakPlaneResult compress(double beta, double c_w, double phi_w, bool intact_plan
   WeakPlaneResult r;
   const double dt = 0.9 * s.stable_dt();
   while (s.time() < 6.0e-3) {  // until the load has fallen to half its peak (or 6 ms: 0.3 mm, 2e-3 strain)
+    if (confining > 0) s.set_pressure_scale(half_cosine_ramp(s.time(), 0.5e-3));
     s.step(dt);
     const double f = s.support_reaction(bottom)[1] / W;
     if (f > r.strength) r.strength = f, r.t_peak = s.time();
@@ -110,5 +117,23 @@ TEST_CASE("P1: plane of weakness: uniaxial strength against the joint's angle (J
                 predicted / 1e6, r.strength / 1e6, 100 * err, 100 * r.plane_yielded, r.broken_off_plane);
     CHECK(std::fabs(err) <= 0.10);
     if (slip < 0.9 * intact) CHECK(r.plane_yielded > 0.9);  // it failed by sliding along the plane
+  }
+}
+
+TEST_CASE("P1: plane of weakness under confinement (Jaeger 1960)", "[long][fdem][P1][gmsh]") {
+  // The same specimen with sigma_3 = 5 MPa on both sides: the plane slides at
+  // sigma_1 = sigma_3 + 2 (c_w + tan(phi_w) sigma_3) / ((1 - tan(phi_w) cot(beta)) sin 2 beta). Tolerance 10 %.
+  const double c_w = 5e6, phi_w = 20 * M_PI / 180, s3 = 5e6;
+  std::printf("P1 confined: sigma_3 %.1f MPa\n", s3 / 1e6);
+  std::printf("P1 confined:  beta  Jaeger (plane) [MPa]  model [MPa]   error\n");
+  for (const double beta_deg : {40.0, 55.0, 70.0}) {
+    const double beta = beta_deg * M_PI / 180;
+    const double slip = s3 + 2 * (c_w + std::tan(phi_w) * s3) / ((1 - std::tan(phi_w) / std::tan(beta)) * std::sin(2 * beta));
+    const WeakPlaneResult r = compress(beta, c_w, phi_w, false, s3);
+    const double err = r.strength / slip - 1;
+    std::printf("P1 confined: %5.0f  %20.2f  %11.2f  %+6.1f %%  (plane's joints past their peak %.0f %%, broken elsewhere %d)\n",
+                beta_deg, slip / 1e6, r.strength / 1e6, 100 * err, 100 * r.plane_yielded, r.broken_off_plane);
+    CHECK(std::fabs(err) <= 0.10);
+    CHECK(r.plane_yielded > 0.9);
   }
 }
