@@ -52,7 +52,8 @@ fdem::MeshSpec read_mesh(TableReader& t) {
                                  "mesher = \"gmsh\"", t.path(), shape));
   if (t.has("growth") && !s.ring_mesher)
     throw InputError(t.key_path("growth") + ": the ring mesher's grading; only with mesher = \"rings\"");
-  if (s.ring_mesher) s.ring_growth = t.number("growth", "", Range{1.0, 2.0, false, false}, 1.0);
+  // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
+  if (s.ring_mesher && t.has("growth")) s.ring_growth = t.number("growth", "", Range{1.0, 2.0, false, false});
   for (TableReader& h : t.table_array("hole")) {
     if (!s.has_holes())
       throw InputError(fmt::format("{}: holes are cut from shape = \"rectangle_with_holes\" or \"disc_with_holes\" "

@@ -124,7 +124,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   copy_from_host(a.triangle_params.eta, eta);
   a.node_loads.constraint.assign(nodes, 0), a.node_loads.v_prescribed.assign(nodes, Vec2{0.0, 0.0});
   a.node_loads.dashpot.assign(nodes, Mat2{0.0, 0.0, 0.0, 0.0});
-  a.node_loads.held.assign(nodes, Vec2{0.0, 0.0});
+  a.node_params.held.assign(nodes, Vec2{0.0, 0.0});
   copy_from_host(a.nodes.x, x), copy_from_host(a.nodes.y, y);
   a.nodes.vx.assign(nodes, 0.0), a.nodes.vy.assign(nodes, 0.0);
   for (DeviceVector<double>* f : {&a.forces.triangle_x, &a.forces.triangle_y, &a.forces.contact_x, &a.forces.contact_y,
@@ -240,7 +240,7 @@ void RockSolver::set_in_situ_stress(const InSituStress& s, const std::vector<int
   }
   copy_from_host(a.triangle_params.inv_f0, inv_f0);
   copy_from_host(a.joint_params.preload, preload);
-  copy_from_host(a.node_loads.held, load);
+  copy_from_host(a.node_params.held, load);
   copy_from_host(a.node_loads.constraint, c);
   in_situ_set_ = true;
   // The joints' state at rest (their tractions now carry the stress) and the elastic energy they hold.

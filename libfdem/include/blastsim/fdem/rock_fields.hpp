@@ -85,7 +85,8 @@ struct PairLoad {
 #define BLASTSIM_ROCK_NODE_PARAMS(X)                             \
   X(double, x0, "initial x [m]")                                 \
   X(double, y0, "initial y [m]")                                 \
-  X(double, mass, "lumped mass, a third of its triangle's [kg/m]")
+  X(double, mass, "lumped mass, a third of its triangle's [kg/m]")  \
+  X(Vec2, held, "in-situ traction of a held boundary on the node [N/m] (a dead load; set before the first step), read where constraint bit 3 is set")
 #define BLASTSIM_ROCK_TRIANGLE_PARAMS(X)                                   \
   X(Mat2, inv_f0, "inverse of the initial edge matrix [1/m]")             \
   X(double, area0, "initial area [m2]")                                   \
@@ -103,8 +104,7 @@ struct PairLoad {
 #define BLASTSIM_ROCK_NODE_LOADS(X)                                                            \
   X(std::uint8_t, constraint, "bit 0: x velocity prescribed; bit 1: y; bit 2: viscous boundary")   \
   X(Vec2, v_prescribed, "prescribed velocity [m/s]")                                               \
-  X(Mat2, dashpot, "viscous-boundary coefficients C [N s/m2] (force -C v), read where bit 2 is set") \
-  X(Vec2, held, "in-situ traction of a held boundary on the node [N/m] (a dead load), read where bit 3 is set")
+  X(Mat2, dashpot, "viscous-boundary coefficients C [N s/m2] (force -C v), read where bit 2 is set")
 
 #define BLASTSIM_ROCK_EDGE_LOADS(X)                                                                \
   X(double, pressure, "pressure on the edge when exposed [Pa] (set_edge_pressure(), or a coupler each step)") \

@@ -430,7 +430,7 @@ struct NodeSpeedPeak {
 //! every step). It also keeps the node's largest speed since the last read (`speed_peak`, node_speed_or_flag()),
 //! so the host reads one maximum after several substeps instead of one after each (RockSolver::advance()).
 struct NodeUpdateKernel {
-  NodeParams params;  //!< mass
+  NodeParams params;  //!< mass, held load
   NodeLoads loads;
   NodeForces<Access::read> forces;
   const SlotForce* joint_force;
@@ -446,7 +446,7 @@ struct NodeUpdateKernel {
     const Vec2 f_joint{starting.first.x + ending.second.x, starting.first.y + ending.second.y};
     const std::uint8_t cons = loads.constraint[n];
     Vec2 f_dead{m * gx, m * gy};  // gravity, and the in-situ traction where the node's boundary is held
-    if (cons & kHeldLoad) f_dead = {f_dead.x + loads.held[n].x, f_dead.y + loads.held[n].y};
+    if (cons & kHeldLoad) f_dead = {f_dead.x + params.held[n].x, f_dead.y + params.held[n].y};
     const Vec2 f_pres{forces.pressure_x[n], forces.pressure_y[n]};
     const Vec2 f_ext{f_dead.x + f_pres.x, f_dead.y + f_pres.y};
     const Vec2 f_con{forces.contact_x[n], forces.contact_y[n]};
