@@ -34,6 +34,22 @@ void GasSolver::transport_conservatively(double dt) {
                 MassFluxKernel{0, s, active, Fx, Ex, dt, g.dx, g.dy, lim, mat, m, Mx, Ax, Wx}),
       cell_part("cip.transport.flux_y", IndexBox{0, g.nx, 0, g.ny + 1},
                 MassFluxKernel{1, s, active, Fy, Ey, dt, g.dy, g.dx, lim, mat, m, My, Ay, Wy}));
+  if (!mat.two && lim != Limiter::none) {
+    // Troubled cells take donor-cell fluxes on their faces; a second check catches the neighbours whose
+    // update those faces changed (TroubledCellKernel).
+    const Field2D<std::uint8_t> troubled = w.troubled;
+    fill_device("cip.transport.clear_troubled", a_->work.troubled, std::uint8_t{0});
+    for (int pass = 0; pass < kTroubledPasses; ++pass) {
+      for_each_cell("cip.transport.check", 0, g.nx, 0, g.ny,
+                    TroubledCellKernel{s, active, Fx, Fy, Ex, Ey, troubled, dt, g.dx, g.dy, kTroubledRelax});
+      for_each_cell_fused(
+          "cip.transport.donor", fuse,
+          cell_part("cip.transport.donor_x", IndexBox{0, g.nx + 1, 0, g.ny},
+                    DonorCellFluxKernel{0, s, active, troubled, Fx, Ex, mat.tracer, m, Mx, g.nx, g.ny, px}),
+          cell_part("cip.transport.donor_y", IndexBox{0, g.nx, 0, g.ny + 1},
+                    DonorCellFluxKernel{1, s, active, troubled, Fy, Ey, mat.tracer, m, My, g.nx, g.ny, py}));
+    }
+  }
   for_each_cell("cip.transport.cells", 0, g.nx, 0, g.ny,
                 CellFluxUpdateKernel{s, v.now, active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy, mat.two, mat.traced(), m, Mx, My, Ax,
                                      Ay, Wx, Wy});
