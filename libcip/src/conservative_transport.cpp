@@ -41,7 +41,8 @@ void GasSolver::transport_conservatively(double dt) {
     fill_device("cip.transport.clear_troubled", a_->work.troubled, std::uint8_t{0});
     for (int pass = 0; pass < kTroubledPasses; ++pass) {
       for_each_cell("cip.transport.check", 0, g.nx, 0, g.ny,
-                    TroubledCellKernel{s, active, Fx, Fy, Ex, Ey, troubled, dt, g.dx, g.dy, kTroubledRelax});
+                    TroubledCellKernel{s, active, Fx, Fy, Ex, Ey, troubled, dt, g.dx, g.dy, kTroubledRelax, pass > 0,
+                                       g.nx, g.ny, px, py});
       for_each_cell_fused(
           "cip.transport.donor", fuse,
           cell_part("cip.transport.donor_x", IndexBox{0, g.nx + 1, 0, g.ny},

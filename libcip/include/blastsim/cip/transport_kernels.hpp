@@ -252,8 +252,19 @@ struct TroubledCellKernel {
   Field2D<const double> Fx, Fy, Ex, Ey;
   Field2D<std::uint8_t> troubled;
   double dt, dx, dy, relax;
+  // After the first pass only a cell beside a flagged one can change (its other faces kept their fluxes, and
+  // it passed the check with them): the others are skipped. Flags are read across a periodic wrap, as
+  // DonorCellFluxKernel does.
+  bool beside_flagged_only;
+  int nx, ny;
+  bool periodic_x, periodic_y;
   BLAST_HD void operator()(int i, int j) const {
     if (!active(i, j) || troubled(i, j)) return;
+    if (beside_flagged_only) {
+      const int il = periodic_x && i == 0 ? nx - 1 : i - 1, ir = periodic_x && i + 1 == nx ? 0 : i + 1;
+      const int jb = periodic_y && j == 0 ? ny - 1 : j - 1, jt = periodic_y && j + 1 == ny ? 0 : j + 1;
+      if (!troubled(il, j) && !troubled(ir, j) && !troubled(i, jb) && !troubled(i, jt)) return;
+    }
     const double rho = s.rho.f(i, j) - dt * ((Fx(i + 1, j) - Fx(i, j)) / dx + (Fy(i, j + 1) - Fy(i, j)) / dy);
     const double E = s.rho.f(i, j) * s.e.f(i, j) - dt * ((Ex(i + 1, j) - Ex(i, j)) / dx + (Ey(i, j + 1) - Ey(i, j)) / dy);
     if (!(rho > 0.0) || !(E > 0.0)) {
