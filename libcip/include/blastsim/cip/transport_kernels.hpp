@@ -229,6 +229,26 @@ struct MassFluxKernel {
   }
 };
 
+//! Divergence of a face flux at cell (i, j): (F(i + 1, j) - F(i, j)) / dx + (G(i, j + 1) - G(i, j)) / dy, F on
+//! x-faces, G on y-faces.
+BLAST_HD inline double flux_divergence(const Field2D<const double>& F, const Field2D<const double>& G, int i, int j,
+                                       double dx, double dy) {
+  return (F(i + 1, j) - F(i, j)) / dx + (G(i, j + 1) - G(i, j)) / dy;
+}
+
+//! Index k of a cell row or column of n cells, wrapped into [0, n) when the boundary is periodic.
+BLAST_HD inline int wrapped_index(int k, int n, bool periodic) {
+  return periodic ? (k < 0 ? k + n : (k >= n ? k - n : k)) : k;
+}
+
+//! How many check-and-fall-back passes a step makes, and how far e may leave its neighbours' range, as a
+//! fraction of their largest e (MOOD's relaxed maximum principle). Measured: on G4's smooth density wave
+//! (orders 32 -> 64 -> 128 cells) and Sod's tube (G9, L1 order 200 -> 1600 cells): 1e-3: 2.09, 2.06 and 0.795;
+//! 1e-4: 1.98, 2.06 and 0.854; 1e-5: 2.05, 2.43 and 0.865; 1e-6: 1.82, 2.04 and 0.869 (no check: 2.09, 2.06
+//! and 0.806). 1e-5 keeps both G4 orders above 2.
+inline constexpr int kTroubledPasses = 2;
+inline constexpr double kTroubledRelax = 1e-5;
+
 //! A posteriori check of the transport's high-order update (the "multi-dimensional optimal order detection" of
 //! Clain, Diot & Loubere, JCP 230 (2011) 4028): cell (i, j) is troubled when the fluxes would leave it a
 //! density or internal energy that is not positive, or a specific internal energy outside the range of the
@@ -237,15 +257,9 @@ struct MassFluxKernel {
 //! values; the limited swept values of rho and rho e are reconstructed independently (so that a contact keeps
 //! its pressure) and at a sharp density minimum beside a jet they can drain a cell's mass and leave its
 //! energy: e grew without bound (docs/gas-solver.md "Troubled cells"). Flags stay set within a step (the
-//! block is checked again after its neighbours' faces changed). Runs with products are not checked: their
-//! mixture energy is measured from each material's reference curve and is not bounded this way.
-//! How many check-and-fall-back passes a step makes, and how far e may leave its neighbours' range, as a
-//! fraction of their largest e (MOOD's relaxed maximum principle). Measured: on G4's smooth density wave
-//! (orders 32 -> 64 -> 128 cells) and Sod's tube (G9, L1 order 200 -> 1600 cells): 1e-3: 2.09, 2.06 and 0.795;
-//! 1e-4: 1.98, 2.06 and 0.854; 1e-5: 2.05, 2.43 and 0.865; 1e-6: 1.82, 2.04 and 0.869 (no check: 2.09, 2.06
-//! and 0.806). 1e-5 keeps both G4 orders above 2.
-inline constexpr int kTroubledPasses = 2;
-inline constexpr double kTroubledRelax = 1e-5;
+//! block is checked again after its neighbours' faces changed). Runs with products are not checked (their
+//! mixture energy is measured from each material's reference curve and is not bounded this way), nor the plain
+//! scheme without limiter (Limiter::none).
 struct TroubledCellKernel {
   GasStateReadView s;
   Field2D<const std::uint8_t> active;
@@ -261,12 +275,12 @@ struct TroubledCellKernel {
   BLAST_HD void operator()(int i, int j) const {
     if (!active(i, j) || troubled(i, j)) return;
     if (beside_flagged_only) {
-      const int il = periodic_x && i == 0 ? nx - 1 : i - 1, ir = periodic_x && i + 1 == nx ? 0 : i + 1;
-      const int jb = periodic_y && j == 0 ? ny - 1 : j - 1, jt = periodic_y && j + 1 == ny ? 0 : j + 1;
+      const int il = wrapped_index(i - 1, nx, periodic_x), ir = wrapped_index(i + 1, nx, periodic_x);
+      const int jb = wrapped_index(j - 1, ny, periodic_y), jt = wrapped_index(j + 1, ny, periodic_y);
       if (!troubled(il, j) && !troubled(ir, j) && !troubled(i, jb) && !troubled(i, jt)) return;
     }
-    const double rho = s.rho.f(i, j) - dt * ((Fx(i + 1, j) - Fx(i, j)) / dx + (Fy(i, j + 1) - Fy(i, j)) / dy);
-    const double E = s.rho.f(i, j) * s.e.f(i, j) - dt * ((Ex(i + 1, j) - Ex(i, j)) / dx + (Ey(i, j + 1) - Ey(i, j)) / dy);
+    const double rho = s.rho.f(i, j) - dt * flux_divergence(Fx, Fy, i, j, dx, dy);
+    const double E = s.rho.f(i, j) * s.e.f(i, j) - dt * flux_divergence(Ex, Ey, i, j, dx, dy);
     if (!(rho > 0.0) || !(E > 0.0)) {
       troubled(i, j) = 1;
       return;
@@ -299,10 +313,8 @@ struct DonorCellFluxKernel {
   BLAST_HD void operator()(int i, int j) const {
     const int im = axis == 0 ? i - 1 : i, jm = axis == 0 ? j : j - 1;
     if (!active(im, jm) || !active(i, j)) return;
-    const int n = axis == 0 ? nx : ny;
-    auto wrap = [&](int k) { return periodic ? (k < 0 ? k + n : (k >= n ? k - n : k)) : k; };
-    const bool flagged = axis == 0 ? troubled(wrap(im), jm) || troubled(wrap(i), j)
-                                   : troubled(im, wrap(jm)) || troubled(i, wrap(j));
+    const bool flagged = axis == 0 ? troubled(wrapped_index(im, nx, periodic), jm) || troubled(wrapped_index(i, nx, periodic), j)
+                                   : troubled(im, wrapped_index(jm, ny, periodic)) || troubled(i, wrapped_index(j, ny, periodic));
     if (!flagged) return;
     const double w = axis == 0 ? s.u.f(i, j) : s.v.f(i, j);
     const int ui = w >= 0.0 ? im : i, uj = w >= 0.0 ? jm : j;
@@ -334,8 +346,8 @@ struct CellFluxUpdateKernel {
       rho_e(i, j) = rho * e;
       return;
     }
-    n.rho.f(i, j) = rho - dt * ((Fx(i + 1, j) - Fx(i, j)) / dx + (Fy(i, j + 1) - Fy(i, j)) / dy);
-    rho_e(i, j) = rho * e - dt * ((Ex(i + 1, j) - Ex(i, j)) / dx + (Ey(i, j + 1) - Ey(i, j)) / dy);
+    n.rho.f(i, j) = rho - dt * flux_divergence(Fx, Fy, i, j, dx, dy);
+    rho_e(i, j) = rho * e - dt * flux_divergence(Ex, Ey, i, j, dx, dy);
     if (!traced) return;
     materials.m1(i, j) -= dt * ((Mx(i + 1, j) - Mx(i, j)) / dx + (My(i, j + 1) - My(i, j)) / dy);
     if (!two) return;
