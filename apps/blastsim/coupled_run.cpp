@@ -79,7 +79,8 @@ class CouplingSeries {
     o.real("crack_gas_mass_kg_per_m", d.crack.mass).real("crack_gas_energy_J_per_m", d.crack.energy);
     o.integer("crack_gas_segments", d.crack.gas_segments).integer("crack_wet_segments", d.crack.wet_segments);
     o.real("crack_gas_pressure_max_Pa", d.crack.max_pressure, 6);
-    o.real("crack_gas_to_grid_J_per_m", d.crack.to_grid_energy).real("crack_gas_wall_work_J_per_m", d.crack.wall_work);
+    o.real("crack_gas_to_grid_J_per_m", d.crack.to_grid_energy).real("crack_gas_wall_work_J_per_m", d.crack.wall_work)
+        .real("crack_gas_unpaid_work_J_per_m", d.crack.unpaid_work);
     o.real("charge_detonation_energy_J_per_m", d.charges.detonation_energy);
     for (const MonitorSettings::Region& r : c_.monitor.regions) {
       const cip::GasTotals t = o.header() ? cip::GasTotals{} : coupler_.gas_in(r.where);

@@ -72,7 +72,7 @@ CrackGasCoupling::CrackGasCoupling(const fdem::RockSolver& rock, const cip::GasM
   a_->cushion.for_each([&](const char*, auto& v) { v.assign(segments, typename std::decay_t<decltype(v)>::value_type{}); });
   const std::size_t records = kMouthSamples * static_cast<std::size_t>(junctions) + segments;
   a_->exchange.to_grid.assign(records, ChannelConserved{0, 0, 0, 0, 0});
-  a_->walls.wall_work.assign(segments, 0.0);
+  a_->walls.for_each([&](const char*, auto& v) { v.assign(segments, 0.0); });
   a_->order.key.assign(records, 0);
   a_->order.record.assign(records, 0);
 }
@@ -211,6 +211,9 @@ void CrackGasCoupling::add_diagnostics(const CouplingContext& ctx, CouplingDiagn
   const double* walls = a_->walls.read().wall_work;
   d.crack.wall_work = reduce_sum("ibm.crack.wall_work", crack_->segment_count(), 0.0,
                                  [=] BLAST_HD(index_t s) { return walls[s]; });
+  const double* unpaid = a_->walls.read().unpaid_work;
+  d.crack.unpaid_work = reduce_sum("ibm.crack.unpaid_work", crack_->segment_count(), 0.0,
+                                   [=] BLAST_HD(index_t s) { return unpaid[s]; });
   d.energy_held += d.crack.energy;
 }
 
@@ -220,7 +223,7 @@ void CrackGasCoupling::write_checkpoint(CheckpointWriter& w) const {
   write_array(w, "crack.handover_gas", a_->handovers.gas);
   a_->cushion.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.cushion.") + name, v); });
   write_array(w, "crack.to_grid", a_->exchange.to_grid);
-  write_array(w, "crack.wall_work", a_->walls.wall_work);
+  a_->walls.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.") + name, v); });
 }
 void CrackGasCoupling::read_checkpoint(CheckpointReader& r) {
   crack_->read_checkpoint(r);
@@ -229,7 +232,7 @@ void CrackGasCoupling::read_checkpoint(CheckpointReader& r) {
   read_array(r, "crack.handover_gas", a_->handovers.gas, n);
   a_->cushion.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.cushion.") + name, v, n); });
   read_array(r, "crack.to_grid", a_->exchange.to_grid, a_->exchange.to_grid.size());
-  read_array(r, "crack.wall_work", a_->walls.wall_work, n);
+  a_->walls.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   for (const std::uint8_t p : to_host(a_->handovers.pending))
     if (p > 1) r.fail("crack.handover_pending", "holds a flag other than 0 or 1");
 }

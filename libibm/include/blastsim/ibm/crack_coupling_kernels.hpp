@@ -61,7 +61,9 @@ namespace blastsim::ibm {
 //! Cumulative ledgers (checkpointed): per deposit record what it gave the grid's cells, per segment the work its
 //! gas did on the crack's walls (docs/coupling.md "Energy budget with crack gas").
 #define BLASTSIM_CRACK_EXCHANGE_LEDGER(X) X(ChannelConserved, to_grid, "per record: gas given to the cells since the start")
-#define BLASTSIM_CRACK_WALL_LEDGER(X) X(double, wall_work, "per segment: work [J/m] of its gas on the walls since the start")
+#define BLASTSIM_CRACK_WALL_LEDGER(X)                                                                   \
+  X(double, wall_work, "per segment: work [J/m] of its gas on the walls since the start")              \
+  X(double, unpaid_work, "per segment: work [J/m] its loads did on the rock beyond what its gas paid")
 #define BLASTSIM_CRACK_DEPOSIT_ORDER(X)                            \
   X(int, key, "cell key of each record (INT_MAX: none), sorted")   \
   X(int, record, "the record at each sorted position")
@@ -111,11 +113,48 @@ BLAST_HD inline double expansion_work(const ChannelConserved& c, double W, doubl
   return isentropic_mean_pressure(p, U, V0, V1) * (V1 - V0);
 }
 
+//! Squared distance [m2] from (px, py) to the segment p0 - p1.
+BLAST_HD inline double segment_distance2(const fdem::Vec2& p0, const fdem::Vec2& p1, double px, double py) {
+  const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
+  double t = len2 > 0.0 ? ((px - p0.x) * ex + (py - p0.y) * ey) / len2 : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  const double dx = px - p0.x - t * ex, dy = py - p0.y - t * ey;
+  return dx * dx + dy * dy;
+}
+
+//! Smallest distance [m] between the segments p0 - p1 and q0 - q1: 0 where they cross.
+BLAST_HD inline double segments_distance(const fdem::Vec2& p0, const fdem::Vec2& p1, const fdem::Vec2& q0,
+                                         const fdem::Vec2& q1) {
+  auto side = [](const fdem::Vec2& a, const fdem::Vec2& b, const fdem::Vec2& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  };
+  const double s0 = side(p0, p1, q0), s1 = side(p0, p1, q1), t0 = side(q0, q1, p0), t1 = side(q0, q1, p1);
+  if (((s0 > 0 && s1 < 0) || (s0 < 0 && s1 > 0)) && ((t0 > 0 && t1 < 0) || (t0 < 0 && t1 > 0))) return 0.0;
+  const double d2 = fmin(fmin(segment_distance2(p0, p1, q0.x, q0.y), segment_distance2(p0, p1, q1.x, q1.y)),
+                         fmin(segment_distance2(q0, q1, p0.x, p0.y), segment_distance2(q0, q1, p1.x, p1.y)));
+  return sqrt(d2);
+}
+
+//! The mean opening [m] of a crack whose face A runs a0 -> a1 and face B b0 -> b1 (a0 faces b1, a1 faces b0;
+//! lengths la, lb > 0), positive when the faces stand apart, negative when pressed into each other: the area
+//! between the faces (the quadrilateral a0 a1 b0 b1, by the shoelace formula) over their mean length, which for
+//! faces that face each other (parallel, hinged, slid along each other, pressed) is the mean of the two ends'
+//! normal openings; plus however much farther apart the faces' nearest points stand than that opening says.
+//! Faces that turned away from each other (a fragment thrown off) can enclose no area however far apart they
+//! are (the quadrilateral folds into a bow tie), and faces slid past each other's ends enclose the area of
+//! their old overlap; the second term keeps such faces apart, so their crack goes to the grid and no cushion
+//! takes a fold for a crack closing on its gas. Continuous in the nodes' positions.
+BLAST_HD inline double faces_opening(const fdem::Vec2& a0, const fdem::Vec2& a1, const fdem::Vec2& b0,
+                                     const fdem::Vec2& b1, double la, double lb) {
+  // Shoelace over a0 -> a1 -> b0 -> b1: the gap lies to the right of a0 -> a1, so an open crack turns clockwise.
+  const double twice = (a0.x * a1.y - a1.x * a0.y) + (a1.x * b0.y - b0.x * a1.y) + (b0.x * b1.y - b1.x * b0.y) +
+                       (b1.x * a0.y - a0.x * b1.y);
+  const double area = -twice / (la + lb);
+  return area + fmax(0.0, segments_distance(a0, a1, b0, b1) - fabs(area));
+}
+
 //! The faces of joint s in the rock's current state: their nodes' positions (a0 -> a1 is face A, b0 -> b1 face B;
-//! a0 faces b1, a1 faces b0), the lengths, and the crack's mean opening [m]: the area between the faces (the
-//! quadrilateral a0 a1 b0 b1, positive when they stand apart) over their mean length. For faces that still face
-//! each other this is the mean of the normal openings of the two ends; for faces that slid or turned away from
-//! each other (a fragment thrown off) it grows with their distance, where the ends' normal openings may not.
+//! a0 faces b1, a1 faces b0), the lengths, and the crack's mean opening [m] (faces_opening()).
 //! `lag` [s] > 0 takes the positions x - lag v instead: with half the rock's last step (RockSolver::last_step()),
 //! the positions along which the rock's work ledger pays the loads.
 struct JointFaces {
@@ -129,10 +168,7 @@ BLAST_HD inline JointFaces joint_faces(const fdem::RockView& rock, int s, double
   JointFaces f{at(jn.a0), at(jn.a1), at(jn.b0), at(jn.b1), 0.0, 0.0, 0.0};
   f.la = sqrt((f.a1.x - f.a0.x) * (f.a1.x - f.a0.x) + (f.a1.y - f.a0.y) * (f.a1.y - f.a0.y));
   f.lb = sqrt((f.b1.x - f.b0.x) * (f.b1.x - f.b0.x) + (f.b1.y - f.b0.y) * (f.b1.y - f.b0.y));
-  // Shoelace over a0 -> a1 -> b0 -> b1: the gap lies to the right of a0 -> a1, so an open crack turns clockwise.
-  const double twice = (f.a0.x * f.a1.y - f.a1.x * f.a0.y) + (f.a1.x * f.b0.y - f.b0.x * f.a1.y) +
-                       (f.b0.x * f.b1.y - f.b1.x * f.b0.y) + (f.b1.x * f.a0.y - f.a0.x * f.b1.y);
-  f.opening = -twice / (f.la + f.lb);
+  f.opening = faces_opening(f.a0, f.a1, f.b0, f.b1, f.la, f.lb);
   return f;
 }
 
@@ -195,10 +231,11 @@ struct CrackGeometryKernel {
     const double V_old = seg.volume[s];
     const ChannelPrimitive P = segment_state(mat, c, V_old);
     if (loaded && !is_vacuum(P)) {  // the work of the cushion's loads since load_rock(): the last substep's too
-      const double W = expansion_work(c, cushion.work[s] + cushion.applied[s] * swept_area(cushion.faces[s], f), P.p,
-                                      V_old, V);
+      const double W_rock = cushion.work[s] + cushion.applied[s] * swept_area(cushion.faces[s], f);
+      const double W = expansion_work(c, W_rock, P.p, V_old, V);
       c.E -= W;
       ledger.wall_work[s] += W;
+      ledger.unpaid_work[s] += W_rock - W;
     }
     seg.volume[s] = V;
     if (wide) {
@@ -210,15 +247,6 @@ struct CrackGeometryKernel {
     seg.cons[s] = c;
   }
 };
-
-//! Squared distance [m2] from (px, py) to the segment p0 - p1.
-BLAST_HD inline double segment_distance2(const fdem::Vec2& p0, const fdem::Vec2& p1, double px, double py) {
-  const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
-  double t = len2 > 0.0 ? ((px - p0.x) * ex + (py - p0.y) * ey) / len2 : 0.0;
-  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-  const double dx = px - p0.x - t * ex, dy = py - p0.y - t * ey;
-  return dx * dx + dy * dy;
-}
 
 //! The gap of every crack that holds its own gas is solid to the grid (one thread per joint): the face points
 //! (x-faces for u, y-faces for v) between its two faces take, as owner, the triangle of the nearer face, so a
