@@ -137,22 +137,27 @@ BLAST_HD inline double segments_distance(const fdem::Vec2& p0, const fdem::Vec2&
 
 //! The mean opening [m] of a crack whose face A runs a0 -> a1 and face B b0 -> b1 (a0 faces b1, a1 faces b0;
 //! lengths la, lb > 0), positive when the faces stand apart, negative when pressed into each other. For faces
-//! that face each other (parallel, hinged, slid along each other, pressed) it is the area between them (the
-//! quadrilateral a0 a1 b0 b1, by the shoelace formula) over their mean length, the mean of the two ends' normal
-//! openings; there the faces' nearest points stand no farther apart than that. A fragment thrown off breaks
-//! this: faces that turned away from each other can enclose no area however far apart they are (the
-//! quadrilateral folds into a bow tie), or a negative one (it turns inside out), and faces slid past each
-//! other's ends keep the area of their old overlap. So where the nearest points stand farther apart than the
-//! area says, by e, the opening is the area plus e, plus up to 2 e more to undo a negative area: it is the
-//! faces' distance once e exceeds the negative area, and continuous in the nodes' positions throughout.
+//! that face each other (parallel, hinged, slid along each other, pressed) it is the area a between them (the
+//! quadrilateral a0 a1 b0 b1, by the shoelace formula) over their mean length L, the mean of the two ends'
+//! normal openings; there the faces' nearest points stand no farther apart than |a|. A fragment thrown off
+//! breaks this: faces that turned away from each other can enclose no area however far apart they are (the
+//! quadrilateral folds into a bow tie), faces that passed each other enclose a negative one (it turns inside
+//! out), and faces slid past each other's ends keep the area of their old overlap. So:
+//! - a negative area beyond a tenth of L is a fold, not a pressed crack: contact keeps real overlaps to about
+//!   stress / penalty x L (a few thousandths of L at a GPa and the default penalty 10 E); its magnitude is
+//!   taken instead, blended in linearly between 0.1 and 0.2 L so that the opening stays continuous;
+//! - where the faces' nearest points stand farther apart than that magnitude, the opening grows by the
+//!   difference: it is their distance.
+//! Pressed faces keep their negative opening (the closure law's), and faces apart read at least their distance.
 BLAST_HD inline double faces_opening(const fdem::Vec2& a0, const fdem::Vec2& a1, const fdem::Vec2& b0,
                                      const fdem::Vec2& b1, double la, double lb) {
   // Shoelace over a0 -> a1 -> b0 -> b1: the gap lies to the right of a0 -> a1, so an open crack turns clockwise.
   const double twice = (a0.x * a1.y - a1.x * a0.y) + (a1.x * b0.y - b0.x * a1.y) + (b0.x * b1.y - b1.x * b0.y) +
                        (b1.x * a0.y - a0.x * b1.y);
-  const double area = -twice / (la + lb);
-  const double excess = fmax(0.0, segments_distance(a0, a1, b0, b1) - fabs(area));
-  return area + excess + 2.0 * fmin(excess, fmax(0.0, -area));
+  const double L = 0.5 * (la + lb), area = -twice / (la + lb);
+  const double fold = fmin(1.0, fmax(0.0, (-area / L - 0.1) / 0.1));  // 0: pressed or open; 1: a fold
+  const double a = area + fold * (fabs(area) - area);
+  return a + fmax(0.0, segments_distance(a0, a1, b0, b1) - fabs(a));
 }
 
 //! The faces of joint s in the rock's current state: their nodes' positions (a0 -> a1 is face A, b0 -> b1 face B;
