@@ -10,6 +10,7 @@
 #include "blastsim/cip/grid.hpp"
 #include "blastsim/core/access.hpp"
 #include "blastsim/core/field2d.hpp"
+#include "blastsim/fdem/contact_kernels.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
 #include "blastsim/ibm/coupling_kernels.hpp"
 #include "blastsim/ibm/crack_gas_kernels.hpp"
@@ -125,10 +126,8 @@ BLAST_HD inline double segment_distance2(const fdem::Vec2& p0, const fdem::Vec2&
 //! Smallest distance [m] between the segments p0 - p1 and q0 - q1: 0 where they cross.
 BLAST_HD inline double segments_distance(const fdem::Vec2& p0, const fdem::Vec2& p1, const fdem::Vec2& q0,
                                          const fdem::Vec2& q1) {
-  auto side = [](const fdem::Vec2& a, const fdem::Vec2& b, const fdem::Vec2& c) {
-    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-  };
-  const double s0 = side(p0, p1, q0), s1 = side(p0, p1, q1), t0 = side(q0, q1, p0), t1 = side(q0, q1, p1);
+  using fdem::cross3;
+  const double s0 = cross3(p0, p1, q0), s1 = cross3(p0, p1, q1), t0 = cross3(q0, q1, p0), t1 = cross3(q0, q1, p1);
   if (((s0 > 0 && s1 < 0) || (s0 < 0 && s1 > 0)) && ((t0 > 0 && t1 < 0) || (t0 < 0 && t1 > 0))) return 0.0;
   const double d2 = fmin(fmin(segment_distance2(p0, p1, q0.x, q0.y), segment_distance2(p0, p1, q1.x, q1.y)),
                          fmin(segment_distance2(q0, q1, p0.x, p0.y), segment_distance2(q0, q1, p1.x, p1.y)));
