@@ -120,6 +120,12 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
 
   detail::RockArrays& a = *a_;
   copy_from_host(a.node_params.x0, x), copy_from_host(a.node_params.y0, y), copy_from_host(a.node_params.mass, mass);
+  std::vector<int> vertex = topo.node_vertex;  // without mesh vertices (a hand-made topology) no two nodes share one
+  if (vertex.size() != static_cast<size_t>(nodes)) {
+    vertex.resize(nodes);
+    for (int n = 0; n < nodes; ++n) vertex[n] = n;
+  }
+  copy_from_host(a.node_params.vertex, vertex);
   copy_from_host(a.triangle_params.inv_f0, inv_f0), copy_from_host(a.triangle_params.area0, area0);
   copy_from_host(a.triangle_params.eta, eta);
   a.node_loads.constraint.assign(nodes, 0), a.node_loads.v_prescribed.assign(nodes, Vec2{0.0, 0.0});
@@ -166,6 +172,20 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.joints.separation.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.broken.assign(joints_, 0);
+  // Joints per mesh vertex (CSR): each joint touches the two vertices of its edge.
+  const int vertices = nodes > 0 ? *std::max_element(vertex.begin(), vertex.end()) + 1 : 0;
+  std::vector<int> vertex_offset(vertices + 1, 0), vertex_joints(2 * joints_);
+  for (int j = 0; j < joints_; ++j) ++vertex_offset[vertex[topo.joints[j].a0] + 1], ++vertex_offset[vertex[topo.joints[j].a1] + 1];
+  for (int v = 0; v < vertices; ++v) vertex_offset[v + 1] += vertex_offset[v];
+  std::vector<int> fill(vertex_offset.begin(), vertex_offset.end() - 1);
+  for (int j = 0; j < joints_; ++j)
+    vertex_joints[fill[vertex[topo.joints[j].a0]]++] = j, vertex_joints[fill[vertex[topo.joints[j].a1]]++] = j;
+  copy_from_host(a.vertex_joint_offset, vertex_offset);
+  copy_from_host(a.vertex_joints, vertex_joints.empty() ? std::vector<int>{0} : vertex_joints);
+  // Bonded: at least one joint there, none broken yet (a vertex without joints bonds nothing).
+  std::vector<std::uint8_t> bonded(std::max(vertices, 1), 0);
+  for (int v = 0; v < vertices; ++v) bonded[v] = vertex_offset[v + 1] > vertex_offset[v] ? 1 : 0;
+  copy_from_host(a.vertex_bonded, bonded);
   a.grid.sorted_triangles.assign(triangles_, 0), a.grid.cell_key.assign(triangles_, 0);
   a.grid.cell_start.assign(1, 0), a.grid.cell_end.assign(1, 0);
   a.grid.neighbour_offset.assign(triangles_ + 1, 0), a.grid.neighbour_list.assign(1, 0);
@@ -326,12 +346,42 @@ EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
   return r;
 }
 
+namespace {
+//! Sets each pair's contact offset from the slot that held it in the candidate lists (offset, list),
+//! -1 where the pair was no candidate there.
+void carry_offsets(detail::RockArrays& a, int pairs, const DeviceVector<int>& offset, const DeviceVector<int>& list,
+                   const DeviceVector<double>& slot_offset) {
+  if (pairs > 0)
+    for_each_index("fdem.grid.carry_offsets", pairs,
+                   CarryOffsetKernel{device_ptr(a.pairs.pair), device_ptr(offset), device_ptr(list),
+                                     device_ptr(slot_offset), device_ptr(a.pairs.offset)});
+}
+
+//! The contact offset of every candidate slot's pair (-1 for all when there are no pairs).
+DeviceVector<double> slot_offsets(const detail::RockArrays& a, int pairs) {
+  const int used = a.grid.neighbour_offset.back();
+  DeviceVector<double> out(std::max(used, 1), -1.0);
+  if (pairs > 0)
+    for_each_index("fdem.grid.slot_offsets", used,
+                   SlotOffsetKernel{device_ptr(a.pairs.slot_pair), device_ptr(a.pairs.offset), device_ptr(out)});
+  return out;
+}
+}  // namespace
+
 RockSolver::~RockSolver() = default;
 RockSolver::RockSolver(RockSolver&&) noexcept = default;
 RockSolver& RockSolver::operator=(RockSolver&&) noexcept = default;
 
 void RockSolver::rebuild_contact_grid() {
   detail::RockArrays& a = *a_;
+  // The pairs' contact offsets outlive the lists: kept per slot of the old lists, carried to the new pairs.
+  const bool carry = pairs_ > 0;
+  DeviceVector<int> old_offset, old_list;
+  DeviceVector<double> old_slot_offset;
+  if (carry) {
+    old_slot_offset = slot_offsets(a, pairs_);
+    old_offset = a.grid.neighbour_offset, old_list = a.grid.neighbour_list;
+  }
   const NodeMotion<Access::read> m = a.nodes.read();
   const index_t n = node_count();
   const double* xs = m.x;
@@ -393,6 +443,7 @@ void RockSolver::rebuild_contact_grid() {
   search.list = device_ptr(g.neighbour_list);
   for_each_index("fdem.contact.fill", triangles_, search);
   build_contact_pairs();
+  if (carry) carry_offsets(a, pairs_, old_offset, old_list, old_slot_offset);
   travel_since_build_ = 0;
   ++rebuilds_;
 }
@@ -414,6 +465,7 @@ void RockSolver::build_contact_pairs() {
   p.pair.resize(std::max(pairs, 1));
   p.touch.resize(std::max(pairs, 1));
   p.load.resize(std::max(pairs, 1));
+  p.offset.assign(std::max(pairs, 1), -1.0);  // none yet; a rebuild carries the old ones over
   for_each_index("fdem.grid.pair_index", triangles_,
                  PairIndexKernel{offset, list, device_ptr(p.pair_offset), device_ptr(p.slot_pair), device_ptr(p.pair)});
   const int used = a.grid.neighbour_offset.back();  // the list holds at least one entry even when empty
@@ -512,9 +564,21 @@ void RockSolver::contact_forces(double dt) {
   if (!options_.contact) return;
   detail::RockArrays& a = *a_;
   const double penalty = options_.contact_penalty_factor * material_.youngs_modulus;
-  const ContactPairKernel pair{a.nodes.read(),       a.node_params.view(),       a.edge_params.view(),
-                               device_ptr(a.joints.broken), device_ptr(a.pairs.pair), device_ptr(a.pairs.touch),
-                               device_ptr(a.pairs.load),    penalty,                    material_.contact_friction,
+  if (joints_ > 0)  // which mesh vertices still have all their joints intact (the joints of this step included)
+    for_each_index("fdem.vertex_bonds", static_cast<index_t>(a.vertex_joint_offset.size() - 1),
+                   VertexBondKernel{device_ptr(a.vertex_joint_offset), device_ptr(a.vertex_joints),
+                                    device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
+  const ContactPairKernel pair{a.nodes.read(),
+                               a.node_params.view(),
+                               a.edge_params.view(),
+                               device_ptr(a.joints.broken),
+                               device_ptr(a.vertex_bonded),
+                               device_ptr(a.pairs.pair),
+                               device_ptr(a.pairs.touch),
+                               device_ptr(a.pairs.load),
+                               device_ptr(a.pairs.offset),
+                               penalty,
+                               material_.contact_friction,
                                dt};
 #if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
   for_each_index("fdem.contact.pairs", pairs_, pair);  // in pair order: neighbouring threads read neighbouring pairs
@@ -828,6 +892,7 @@ void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.contact.cells", std::array<int, 2>{grid_nx_, grid_ny_});
   w.value("rock.contact.buffer", buffer_);
   w.value("rock.contact.travel", travel_since_build_);
+  if (options_.contact) write_array(w, "rock.contact.slot_offset", slot_offsets(*a_, pairs_));
   write_array(w, "rock.probes.peak", a_->probe_peak);
 }
 
@@ -921,6 +986,10 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
     } catch (const std::logic_error& e) {
       r.fail("rock.grid.neighbour_list", e.what());
     }
+    DeviceVector<double> slot_offset;
+    read_array(r, "rock.contact.slot_offset", slot_offset, g.neighbour_list.size());
+    check_range(r, "rock.contact.slot_offset", to_host(slot_offset), -1, 1);
+    carry_offsets(*a_, pairs_, g.neighbour_offset, g.neighbour_list, slot_offset);
   }
 }
 

@@ -46,6 +46,10 @@ struct RockArrays {
   // contact broad phase (checkpointed) and its pairs (derived)
   ContactGridArrays grid;
   ContactPairsArrays pairs;
+  // mesh vertices: the joints that touch each (CSR, fixed) and whether all of them are intact (derived from
+  // joints.broken each step, not checkpointed); contact skips the pairs that meet at a bonded vertex
+  DeviceVector<int> vertex_joint_offset, vertex_joints;
+  DeviceVector<std::uint8_t> vertex_bonded;
   // velocity probes (set_probes): their stations (fixed) and peaks (checkpointed as rock.probes.peak)
   DeviceVector<ProbeStation> probe_station;
   DeviceVector<ProbePeak> probe_peak;

@@ -9,6 +9,11 @@
 //! both ways round therefore gives the whole force. One evaluation (an edge of C against T) is
 //! edge_against_target(); it returns the loads on C's two edge nodes and the reaction on T's three nodes,
 //! applied at the same points, so linear and angular momentum balance exactly.
+//!
+//! An offset s in [0, 1) replaces phi by (phi - s)^+ on both triangles of a pair: the potentials of the same
+//! triangles shrunk towards their centroids, so the pair pushes only against overlap beyond depth s. A pair
+//! whose corners met at a bonded mesh vertex enters contact with s equal to the depth it already had
+//! (docs/fdem-solver.md, "Which pairs touch"); s = 0 is Munjiza's contact, evaluated by the same arithmetic.
 #pragma once
 
 #include "blastsim/fdem/triangle_kernels.hpp"
@@ -23,6 +28,7 @@ struct EdgeContactLoad {
   Vec2 edge[2];
   Vec2 target[3];
   double friction_power;
+  double depth;  //!< deepest phi_T on the edge's part inside the target (the unshrunk potential, in [0, 1])
   bool touching;
 };
 
@@ -66,10 +72,11 @@ BLAST_HD inline bool clip_to_left(const Vec2& p, const Vec2& q, const Vec2& a, c
 //! Velocities vp, vq of the edge nodes and vt[] of the target nodes, with masses m_edge (the two edge nodes
 //! together) and m_target, give the friction: a tangential load opposing the relative sliding velocity,
 //! min(mu |F_n|, 0.5 m_eff |v_t| / dt) (Coulomb, capped so that one step at most halves the sliding speed;
-//! m_eff the reduced mass), applied with the same distribution as the normal load.
+//! m_eff the reduced mass), applied with the same distribution as the normal load. With `offset` s > 0 the
+//! load is that of the shrunk potential (phi_T - s)^+ (file comment); `depth` is reported either way.
 BLAST_HD inline EdgeContactLoad edge_against_target(const Vec2& p, const Vec2& q, const Vec2 t[3], const Vec2& vp,
                                                     const Vec2& vq, const Vec2 vt[3], double m_edge, double m_target,
-                                                    double penalty, double friction, double dt) {
+                                                    double penalty, double friction, double dt, double offset = 0.0) {
   EdgeContactLoad out{};
   for (int k = 0; k < 3; ++k) {  // quick exit: the edge lies wholly outside one side of the target
     if (cross3(t[k], t[(k + 1) % 3], p) < 0 && cross3(t[k], t[(k + 1) % 3], q) < 0) return out;
@@ -81,6 +88,7 @@ BLAST_HD inline EdgeContactLoad edge_against_target(const Vec2& p, const Vec2& q
   double load = 0;              // integral of phi_T along the edge [m]
   double w_edge[2] = {0, 0};    // integrals of phi_T times the edge's shape functions
   double w_target[3] = {0, 0, 0};  // integrals of phi_T times the target's barycentric coordinates
+  double depth = 0;
   for (int k = 0; k < 3; ++k) {
     const Vec2& a = t[k];
     const Vec2& b = t[(k + 1) % 3];
@@ -89,13 +97,25 @@ BLAST_HD inline EdgeContactLoad edge_against_target(const Vec2& p, const Vec2& q
     if (!clip_to_left(p, q, a, b, s0, s1) || !clip_to_left(p, q, b, g, s0, s1) || !clip_to_left(p, q, g, a, s0, s1))
       continue;
     const double inv_sub2 = 1.0 / cross3(g, a, b);
+    if (offset > 0) {  // phi is linear along the clipped part: its ends give the depth, then keep phi >= offset
+      const double f0 = cross3({p.x + s0 * (q.x - p.x), p.y + s0 * (q.y - p.y)}, a, b) * inv_sub2;
+      const double f1 = cross3({p.x + s1 * (q.x - p.x), p.y + s1 * (q.y - p.y)}, a, b) * inv_sub2;
+      depth = max_of(depth, max_of(f0, f1));
+      if (!(f0 > offset || f1 > offset)) continue;
+      const double cut = s0 + (s1 - s0) * (offset - f0) / (f1 - f0);  // where phi = offset, when it is crossed
+      if (f0 < offset) s0 = cut;
+      if (f1 < offset) s1 = cut;
+      if (!(s1 > s0)) continue;
+    }
     const double seg = (s1 - s0) * len;
     // Simpson on [s0, s1]: exact for phi (linear) times a linear shape function.
     const double ss[3] = {s0, 0.5 * (s0 + s1), s1};
     const double ws[3] = {seg / 6.0, 4.0 * seg / 6.0, seg / 6.0};
     for (int m = 0; m < 3; ++m) {
       const Vec2 x{p.x + ss[m] * (q.x - p.x), p.y + ss[m] * (q.y - p.y)};
-      const double phi = cross3(x, a, b) * inv_sub2;
+      const double phi_full = cross3(x, a, b) * inv_sub2;
+      if (m != 1) depth = max_of(depth, phi_full);  // the ends of the clipped part (offset 0)
+      const double phi = phi_full - offset;
       const double wp = ws[m] * phi;
       load += wp;
       w_edge[0] += wp * (1.0 - ss[m]);
@@ -104,6 +124,7 @@ BLAST_HD inline EdgeContactLoad edge_against_target(const Vec2& p, const Vec2& q
         w_target[c] += wp * cross3(x, t[(c + 1) % 3], t[(c + 2) % 3]) * inv_area2;
     }
   }
+  out.depth = depth;
   if (!(load > 0)) return out;
   out.touching = true;
   const double fn = penalty * load;  // normal load magnitude [N/m], pushes the edge back along -n

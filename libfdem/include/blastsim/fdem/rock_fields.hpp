@@ -86,6 +86,7 @@ struct PairLoad {
   X(double, x0, "initial x [m]")                                 \
   X(double, y0, "initial y [m]")                                 \
   X(double, mass, "lumped mass, a third of its triangle's [kg/m]")  \
+  X(int, vertex, "the mesh vertex it is a copy of")              \
   X(Vec2, held, "in-situ traction of a held boundary on the node [N/m] (a dead load; set before the first step), read where constraint bit 3 is set")
 #define BLASTSIM_ROCK_TRIANGLE_PARAMS(X)                                   \
   X(Mat2, inv_f0, "inverse of the initial edge matrix [1/m]")             \
@@ -146,13 +147,14 @@ struct PairLoad {
   X(int, cell_end, "one past its last entry")                                      \
   X(int, neighbour_offset, "per triangle (+1): start of its candidate list (CSR)") \
   X(int, neighbour_list, "contact candidates within the buffer")
-// ---- contact pairs: each candidate pair once, derived from the lists (not checkpointed) -----------------
+// ---- contact pairs: each candidate pair once, derived from the lists (only `offset` is checkpointed) ------
 #define BLASTSIM_ROCK_CONTACT_PAIRS(X)                                    \
   X(int, pair_offset, "per triangle (+1): first pair it leads")           \
   X(int, slot_pair, "per candidate slot: its pair")                       \
   X(TrianglePair, pair, "the pair's triangles, i < j")                    \
   X(std::uint8_t, touch, "1 when the pair touched in this step")          \
-  X(PairLoad, load, "the pair's loads, valid when touching")
+  X(PairLoad, load, "the pair's loads, valid when touching")             \
+  X(double, offset, "pairs meeting at one mesh vertex: contact offset s (-1: bonded, or none yet; checkpointed per slot)")
 
 //! Read-only views of the params.
 BLASTSIM_CONST_GROUP(NodeParams, BLASTSIM_ROCK_NODE_PARAMS)

@@ -264,26 +264,121 @@ struct PairIndexKernel {
   }
 };
 
+//! The contact offset of each candidate slot's pair (kept across rebuilds of the lists and in checkpoints).
+struct SlotOffsetKernel {
+  const int* slot_pair;
+  const double* pair_offset;
+  double* slot_offset;
+  BLAST_HD void operator()(index_t s) const { slot_offset[s] = pair_offset[slot_pair[s]]; }
+};
+
+//! After a rebuild: each new pair (i, j) takes the offset its slot had in i's previous candidate list, or -1
+//! (none yet) where j was not a candidate of i before.
+struct CarryOffsetKernel {
+  const TrianglePair* pair;
+  const int *old_offset, *old_list;
+  const double* old_slot_offset;
+  double* offset;
+  BLAST_HD void operator()(index_t p) const {
+    const int i = pair[p].i, j = pair[p].j;
+    double o = -1;
+    for (int s = old_offset[i]; s < old_offset[i + 1]; ++s)
+      if (old_list[s] == j) {
+        o = old_slot_offset[s];
+        break;
+      }
+    offset[p] = o;
+  }
+};
+
 //! 1 for a candidate slot that PairIndexKernel found no pair for (summed to check the lists' symmetry).
 struct UnmatchedSlot {
   const int* slot_pair;
   BLAST_HD double operator()(index_t s) const { return slot_pair[s] < 0 ? 1.0 : 0.0; }
 };
 
+//! The six edge-against-target evaluations of one pair of triangles x[0], x[1] (counter-clockwise), with
+//! their node velocities and masses: the loads on both triangles' nodes, the friction power, and the pair's
+//! depth (the larger of the two triangles' deepest potential on the other's edges; docs/fdem-solver.md).
+struct PairContact {
+  Vec2 f[2][3];
+  double friction_power;
+  double depth;
+  bool touching;
+};
+BLAST_HD inline PairContact pair_contact(const Vec2 x[2][3], const Vec2 v[2][3], const double m[2][3], double penalty,
+                                         double friction, double dt, double offset) {
+  PairContact out{{{{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}}, 0.0, 0.0, false};
+  double mt[2] = {0, 0};
+  BLAST_UNROLL
+  for (int side = 0; side < 2; ++side)
+    BLAST_UNROLL
+    for (int k = 0; k < 3; ++k) mt[side] += m[side][k];
+  BLAST_UNROLL
+  for (int c = 0; c < 2; ++c) {  // contactor c's edges against target 1 - c
+    const int t = 1 - c;
+    BLAST_UNROLL
+    for (int e = 0; e < 3; ++e) {
+      const int e1 = (e + 1) % 3;
+      const EdgeContactLoad l = edge_against_target(x[c][e], x[c][e1], x[t], v[c][e], v[c][e1], v[t],
+                                                    m[c][e] + m[c][e1], mt[t], penalty, friction, dt, offset);
+      out.depth = max_of(out.depth, l.depth);
+      if (!l.touching) continue;
+      out.touching = true;
+      out.f[c][e] = {out.f[c][e].x + l.edge[0].x, out.f[c][e].y + l.edge[0].y};
+      out.f[c][e1] = {out.f[c][e1].x + l.edge[1].x, out.f[c][e1].y + l.edge[1].y};
+      BLAST_UNROLL
+      for (int k = 0; k < 3; ++k) out.f[t][k] = {out.f[t][k].x + l.target[k].x, out.f[t][k].y + l.target[k].y};
+      out.friction_power += l.friction_power;
+    }
+  }
+  return out;
+}
+
+//! The contact offset of a pair that meets at one mesh vertex, after a step in which its depth was `depth`
+//! (docs/fdem-solver.md, "Which pairs touch"): on entry (offset < 0: its vertex was bonded until now) the
+//! depth its corners already overlap by, so it enters without a load; afterwards lowered to the depth
+//! whenever the pair is no deeper than its offset. Lowering it then stores or frees no energy: the pair
+//! carries no load before or after.
+BLAST_HD inline double next_contact_offset(double offset, double depth) {
+  return offset < 0 || depth < offset ? depth : offset;
+}
+
+//! Clears vertex_bonded[v] once a joint touching mesh vertex v has broken (a gather over v's joints; the flag
+//! never comes back, and it depends only on joints.broken, so a restart rebuilds it exactly).
+struct VertexBondKernel {
+  const int *vertex_joint_offset, *vertex_joints;
+  const std::uint8_t* joint_broken;
+  std::uint8_t* vertex_bonded;
+  BLAST_HD void operator()(index_t vi) const {
+    const int v = static_cast<int>(vi);
+    if (!vertex_bonded[v]) return;
+    for (int k = vertex_joint_offset[v]; k < vertex_joint_offset[v + 1]; ++k)
+      if (joint_broken[vertex_joints[k]]) {
+        vertex_bonded[v] = 0;
+        return;
+      }
+  }
+};
+
 //! Contact of one pair (i, j), i < j (Munjiza's distributed potential, contact_kernels.hpp): the loads on
-//! both triangles' nodes from all six edge-against-target evaluations, each evaluated once. Pairs joined by
-//! an intact joint or apart (bounding boxes, then separating axes) are skipped. Pairs that only share a
-//! vertex are tested like any other (Munjiza): their corners overlap by the joints' give, and the small
-//! contact force that makes is part of the model (docs/fdem-solver.md). Writes the pair's touch flag and,
-//! when it touches, its loads on i's and j's nodes and its friction power.
+//! both triangles' nodes from all six edge-against-target evaluations, each evaluated once. Skipped: pairs
+//! joined by an intact joint, pairs that meet at one mesh vertex whose joints are all intact (their corners
+//! are copies of one vertex held together by the joints, and overlap by the joints' give), and pairs apart
+//! (bounding boxes, then separating axes). A pair that meets at one vertex enters when the vertex's first
+//! joint breaks, with the offset of next_contact_offset(): it pushes only against overlap gained since
+//! (docs/fdem-solver.md). Writes the pair's touch flag, its offset, and, when it touches, its loads on i's and
+//! j's nodes and its friction power.
 struct ContactPairKernel {
   NodeMotion<Access::read> nodes;
-  NodeParams node_params;  //!< mass
+  NodeParams node_params;  //!< mass, vertex
   EdgeParams edge_params;  //!< neighbour, joint
   const std::uint8_t* joint_broken;
+  const std::uint8_t* vertex_bonded;
   const TrianglePair* pair;
   std::uint8_t* touch;
   PairLoad* load;
+  double* offset;
   double penalty, friction, dt;
   BLAST_HD bool joined(int i, int j) const {
     for (int e = 0; e < 3; ++e)
@@ -293,16 +388,38 @@ struct ContactPairKernel {
       }
     return false;
   }
+  //! The mesh vertex that triangles i and j share when they share exactly one, else -1.
+  BLAST_HD int one_shared_vertex(int i, int j) const {
+    int shared = -1, count = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int v = node_params.vertex[3 * i + a];
+      for (int b = 0; b < 3; ++b)
+        if (node_params.vertex[3 * j + b] == v) shared = v, ++count;
+    }
+    return count == 1 ? shared : -1;
+  }
   BLAST_HD void operator()(index_t p) const {
     const int i = pair[p].i, j = pair[p].j;
     touch[p] = 0;
-    if (joined(i, j) || boxes_apart(triangle_box(nodes, i), triangle_box(nodes, j), 0.0)) return;
+    if (joined(i, j)) return;
+    const int vertex = one_shared_vertex(i, j);
+    double s = 0;  // Munjiza's contact for every pair but those that meet at one vertex
+    if (vertex >= 0) {
+      if (vertex_bonded[vertex]) {
+        offset[p] = -1;
+        return;
+      }
+      s = offset[p];
+    }
     Vec2 x[2][3];
     nodes.triangle(i, x[0]);
     nodes.triangle(j, x[1]);
-    if (!triangles_overlap(x[0], x[1])) return;
+    if (boxes_apart(triangle_box(nodes, i), triangle_box(nodes, j), 0.0) || !triangles_overlap(x[0], x[1])) {
+      if (vertex >= 0) offset[p] = next_contact_offset(s, 0.0);
+      return;
+    }
     Vec2 v[2][3];
-    double m[2][3], mt[2] = {0, 0};
+    double m[2][3];
     BLAST_UNROLL
     for (int side = 0; side < 2; ++side)
       BLAST_UNROLL
@@ -310,34 +427,16 @@ struct ContactPairKernel {
         const int n = 3 * (side == 0 ? i : j) + k;
         v[side][k] = nodes.velocity(n);
         m[side][k] = node_params.mass[n];
-        mt[side] += m[side][k];
       }
-    Vec2 f[2][3] = {{{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
-    double friction_power = 0;
-    bool touching = false;
-    BLAST_UNROLL
-    for (int c = 0; c < 2; ++c) {  // contactor c's edges against target 1 - c
-      const int t = 1 - c;
-      BLAST_UNROLL
-      for (int e = 0; e < 3; ++e) {
-        const int e1 = (e + 1) % 3;
-        const EdgeContactLoad l = edge_against_target(x[c][e], x[c][e1], x[t], v[c][e], v[c][e1], v[t],
-                                                      m[c][e] + m[c][e1], mt[t], penalty, friction, dt);
-        if (!l.touching) continue;
-        touching = true;
-        f[c][e] = {f[c][e].x + l.edge[0].x, f[c][e].y + l.edge[0].y};
-        f[c][e1] = {f[c][e1].x + l.edge[1].x, f[c][e1].y + l.edge[1].y};
-        BLAST_UNROLL
-        for (int k = 0; k < 3; ++k) f[t][k] = {f[t][k].x + l.target[k].x, f[t][k].y + l.target[k].y};
-        friction_power += l.friction_power;
-      }
-    }
-    if (!touching) return;
+    // On entry (s < 0) an offset of 1 (the potentials' peak) gives no load and still measures the depth.
+    const PairContact c = pair_contact(x, v, m, penalty, friction, dt, s < 0 ? 1.0 : s);
+    if (vertex >= 0) offset[p] = next_contact_offset(s, c.depth);
+    if (!c.touching) return;
     touch[p] = 1;
     PairLoad& out = load[p];
     BLAST_UNROLL
-    for (int k = 0; k < 3; ++k) out.on_i[k] = f[0][k], out.on_j[k] = f[1][k];
-    out.friction_power = friction_power;
+    for (int k = 0; k < 3; ++k) out.on_i[k] = c.f[0][k], out.on_j[k] = c.f[1][k];
+    out.friction_power = c.friction_power;
   }
 };
 
