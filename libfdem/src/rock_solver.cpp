@@ -466,8 +466,12 @@ void RockSolver::build_contact_pairs() {
   p.touch.resize(std::max(pairs, 1));
   p.load.resize(std::max(pairs, 1));
   p.offset.assign(std::max(pairs, 1), -1.0);  // none yet; a rebuild carries the old ones over
+  p.bond.resize(std::max(pairs, 1));
   for_each_index("fdem.grid.pair_index", triangles_,
                  PairIndexKernel{offset, list, device_ptr(p.pair_offset), device_ptr(p.slot_pair), device_ptr(p.pair)});
+  if (pairs > 0)
+    for_each_index("fdem.grid.pair_bond", pairs,
+                   PairBondKernel{a.node_params.view(), a.edge_params.view(), device_ptr(p.pair), device_ptr(p.bond)});
   const int used = a.grid.neighbour_offset.back();  // the list holds at least one entry even when empty
   const double unmatched = reduce_sum("fdem.grid.pair_check", used, 0.0, UnmatchedSlot{device_ptr(p.slot_pair)});
   if (unmatched > 0)
@@ -570,10 +574,10 @@ void RockSolver::contact_forces(double dt) {
                                     device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
   const ContactPairKernel pair{a.nodes.read(),
                                a.node_params.view(),
-                               a.edge_params.view(),
                                device_ptr(a.joints.broken),
                                device_ptr(a.vertex_bonded),
                                device_ptr(a.pairs.pair),
+                               device_ptr(a.pairs.bond),
                                device_ptr(a.pairs.touch),
                                device_ptr(a.pairs.load),
                                device_ptr(a.pairs.offset),
@@ -585,8 +589,8 @@ void RockSolver::contact_forces(double dt) {
 #else
   // CPU: the static OpenMP schedule gives each thread one contiguous run of pairs, and the pairs that touch
   // (numbered with their triangles: around the hole and the cracks) bunch up in a few runs. Visiting them in
-  // interleaved blocks spreads them over the threads; a pair's result does not depend on when it runs.
-  const InterleavedPairs interleaved{pair, pairs_, InterleavedPairs::block_length_for(pairs_)};
+  // chunks from interleaved lanes spreads them over the threads; a pair's result does not depend on when it runs.
+  const InterleavedPairs interleaved{pair, pairs_, InterleavedPairs::chunks_per_lane_for(pairs_)};
   for_each_index("fdem.contact.pairs", interleaved.launch_size(), interleaved);
 #endif
   for_each_index("fdem.contact.gather", triangles_,

@@ -152,6 +152,7 @@ struct PairLoad {
   X(int, pair_offset, "per triangle (+1): first pair it leads")           \
   X(int, slot_pair, "per candidate slot: its pair")                       \
   X(TrianglePair, pair, "the pair's triangles, i < j")                    \
+  X(int, bond, "what holds the pair while intact: its joint (>= 0), -2 - v for one common mesh vertex v, or -1") \
   X(std::uint8_t, touch, "1 when the pair touched in this step")          \
   X(PairLoad, load, "the pair's loads, valid when touching")             \
   X(double, offset, "pairs meeting at one mesh vertex: contact offset s (-1: bonded, or none yet; checkpointed per slot)")

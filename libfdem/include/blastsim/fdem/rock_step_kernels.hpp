@@ -264,6 +264,30 @@ struct PairIndexKernel {
   }
 };
 
+//! What holds pair (i, j) together while intact, found once per build of the pairs: the joint across their
+//! common edge, or their one common mesh vertex (encoded -2 - v), or nothing (-1).
+struct PairBondKernel {
+  NodeParams node_params;  //!< vertex
+  EdgeParams edge_params;  //!< neighbour, joint
+  const TrianglePair* pair;
+  int* bond;
+  BLAST_HD void operator()(index_t p) const {
+    const int i = pair[p].i, j = pair[p].j;
+    for (int e = 0; e < 3; ++e)
+      if (edge_params.neighbour[3 * i + e] == j) {
+        bond[p] = edge_params.joint[3 * i + e] >= 0 ? edge_params.joint[3 * i + e] : -1;
+        return;
+      }
+    int shared = -1, count = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int v = node_params.vertex[3 * i + a];
+      for (int c = 0; c < 3; ++c)
+        if (node_params.vertex[3 * j + c] == v) shared = v, ++count;
+    }
+    bond[p] = count == 1 ? -2 - shared : -1;
+  }
+};
+
 //! The contact offset of each candidate slot's pair (kept across rebuilds of the lists and in checkpoints).
 struct SlotOffsetKernel {
   const int* slot_pair;
@@ -371,46 +395,22 @@ struct VertexBondKernel {
 //! j's nodes and its friction power.
 struct ContactPairKernel {
   NodeMotion<Access::read> nodes;
-  NodeParams node_params;  //!< mass, vertex
-  EdgeParams edge_params;  //!< neighbour, joint
+  NodeParams node_params;  //!< mass
   const std::uint8_t* joint_broken;
   const std::uint8_t* vertex_bonded;
   const TrianglePair* pair;
+  const int* bond;  //!< PairBondKernel
   std::uint8_t* touch;
   PairLoad* load;
   double* offset;
   double penalty, friction, dt;
-  BLAST_HD bool joined(int i, int j) const {
-    for (int e = 0; e < 3; ++e)
-      if (edge_params.neighbour[3 * i + e] == j) {
-        const int joint = edge_params.joint[3 * i + e];
-        return joint >= 0 && !joint_broken[joint];
-      }
-    return false;
-  }
-  //! The mesh vertex that triangles i and j share when they share exactly one, else -1.
-  BLAST_HD int one_shared_vertex(int i, int j) const {
-    int shared = -1, count = 0;
-    for (int a = 0; a < 3; ++a) {
-      const int v = node_params.vertex[3 * i + a];
-      for (int b = 0; b < 3; ++b)
-        if (node_params.vertex[3 * j + b] == v) shared = v, ++count;
-    }
-    return count == 1 ? shared : -1;
-  }
   BLAST_HD void operator()(index_t p) const {
-    const int i = pair[p].i, j = pair[p].j;
     touch[p] = 0;
-    if (joined(i, j)) return;
-    const int vertex = one_shared_vertex(i, j);
-    double s = 0;  // Munjiza's contact for every pair but those that meet at one vertex
-    if (vertex >= 0) {
-      if (vertex_bonded[vertex]) {
-        offset[p] = -1;
-        return;
-      }
-      s = offset[p];
-    }
+    const int b = bond[p];
+    if (b >= 0 ? !joint_broken[b] : b <= -2 && vertex_bonded[-2 - b]) return;  // held together (offset stays -1)
+    const int vertex = b <= -2 ? -2 - b : -1;
+    const double s = vertex >= 0 ? offset[p] : 0.0;  // Munjiza's contact for all but pairs that meet at one vertex
+    const int i = pair[p].i, j = pair[p].j;
     Vec2 x[2][3];
     nodes.triangle(i, x[0]);
     nodes.triangle(j, x[1]);
@@ -440,17 +440,20 @@ struct ContactPairKernel {
   }
 };
 
-//! ContactPairKernel over the pairs in 64 interleaved blocks (CPU load balance: see RockSolver::contact_forces):
-//! launch index q visits pair (q mod 64) x block_length + q / 64; indices past the last pair do nothing.
+//! ContactPairKernel over the pairs in chunks of 256 consecutive pairs, the chunks visited in 64 interleaved lanes
+//! (CPU load balance: see RockSolver::contact_forces): launch index q lies in visit k = q / 256, which is chunk
+//! (k mod 64) x chunks_per_lane + k / 64, at offset q mod 256; indices past the last pair do nothing. A thread's
+//! contiguous run of launch indices thus takes chunks from all over the pair range, each read in order.
 struct InterleavedPairs {
-  static constexpr index_t blocks = 64;
+  static constexpr index_t lanes = 64, chunk = 256;
   ContactPairKernel pair;
   index_t pairs;
-  index_t block_length;  //!< block_length_for(pairs)
-  static index_t block_length_for(index_t n) { return (n + blocks - 1) / blocks; }
-  index_t launch_size() const { return blocks * block_length; }
+  index_t chunks_per_lane;  //!< chunks_per_lane_for(pairs)
+  static index_t chunks_per_lane_for(index_t n) { return ((n + chunk - 1) / chunk + lanes - 1) / lanes; }
+  index_t launch_size() const { return lanes * chunks_per_lane * chunk; }
   BLAST_HD void operator()(index_t q) const {
-    const index_t p = (q % blocks) * block_length + q / blocks;
+    const index_t k = q / chunk;
+    const index_t p = ((k % lanes) * chunks_per_lane + k / lanes) * chunk + q % chunk;
     if (p < pairs) pair(p);
   }
 };
