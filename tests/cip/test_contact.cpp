@@ -2,6 +2,7 @@
 //! \brief docs/validation.md G8-G9: contact discontinuities stay monotone with uniform pressure and velocity; Toro's
 //! Riemann tests 1, 2, 4, 5 against a MUSCL-Hancock/HLLC reference on the same grid; Sod's order of convergence.
 #include "catch.hpp"
+#include "validation_courant.hpp"
 #include "gas_cases.hpp"
 #include "muscl_hancock.hpp"
 
@@ -28,7 +29,7 @@ ContactError advect_contact(int n, double rho_l, double rho_r, cip::Transport tr
   const double lo = std::min(rho_l, rho_r), hi = std::max(rho_l, rho_r), jump = hi - lo;
   ContactError worst;
   for (double t : {0.01, 0.035, 0.07, 0.14}) {
-    run_to(s, t, 0.1);
+    run_to(s, t, blastsim::test::validation_courant());
     const cip::HostGasFields h = s.to_host();
     const std::vector<double> rho = strip(h, h.rho, Axis::x), pp = strip(h, h.p, Axis::x), uu = strip(h, h.u, Axis::x);
     for (int i = 0; i < n; ++i) {
@@ -48,7 +49,7 @@ double blastsim_l1(int n, const Primitive& L, const Primitive& R, double x0, dou
   opt.transport = transport;
   opt.viscosity = cip::recommended_viscosity(transport);
   cip::GasSolver s = make_shock_tube(n, Axis::x, L, R, x0, 1.0, 1.4, opt);
-  run_to(s, t, 0.1);
+  run_to(s, t, blastsim::test::validation_courant());
   const ExactRiemann exact(L, R, 1.4);
   const cip::HostGasFields h = s.to_host();
   const std::vector<double> rho = strip(h, h.rho, Axis::x);

@@ -1,6 +1,7 @@
 //! \file test_explosion2d.cpp
 //! \brief docs/validation.md G2: Toro's 2-D cylindrical explosion against an independent high-resolution radial solution.
 #include "catch.hpp"
+#include "validation_courant.hpp"
 #include "gas_cases.hpp"
 #include "radial_reference.hpp"
 
@@ -39,7 +40,7 @@ ExplosionResult run_explosion(int n, const RadialProfile& ref) {
     const double rho = in ? 1.0 : 0.125, p = in ? 1.0 : 0.1;
     return cip::GasPoint{rho, eos.internal_energy(rho, p), 0.0, 0.0};
   });
-  run_to(s, 0.25, 0.1);
+  run_to(s, 0.25, blastsim::test::validation_courant());
   const cip::HostGasFields h = s.to_host();
   ExplosionResult r{0, 0, 0, 0, 0};
   const cip::GasGrid& g = s.grid();

@@ -1,6 +1,7 @@
 //! \file test_smooth_wave.cpp
 //! \brief docs/validation.md G4: observed order of accuracy on smooth periodic waves (entropy wave and acoustic wave).
 #include "catch.hpp"
+#include "validation_courant.hpp"
 #include "gas_cases.hpp"
 
 using namespace blastsim;
@@ -20,7 +21,7 @@ double entropy_wave_error(int n) {
     const double rho = rho_exact(x, y);
     return cip::GasPoint{rho, eos.internal_energy(rho, 1.0), 1.0, 1.0};
   });
-  run_to(s, 1.0, 0.1);
+  run_to(s, 1.0, blastsim::test::validation_courant());
   const cip::HostGasFields h = s.to_host();
   double err = 0;
   for (int j = 0; j < n; ++j)
@@ -42,7 +43,7 @@ double acoustic_wave_error(int n) {
     const double rho = 1.0 + dp(x) / (c * c);
     return cip::GasPoint{rho, eos.internal_energy(rho, 1.0 + dp(x)), dp(x) / c, 0.0};
   });
-  run_to(s, 1.0 / c, 0.1);
+  run_to(s, 1.0 / c, blastsim::test::validation_courant());
   const cip::HostGasFields h = s.to_host();
   const std::vector<double> p = strip(h, h.p, Axis::x);
   double err = 0;

@@ -3,6 +3,7 @@
 //! uniform, shock tubes of products into air against the exact two-material Riemann solution, positivity at a density
 //! ratio of 1e4, each material's mass and the total energy conserved, checkpoint and restart bit for bit.
 #include "blastsim/core/checkpoint.hpp"
+#include "validation_courant.hpp"
 #include "blastsim/core/error.hpp"
 #include "catch.hpp"
 #include "gas_cases.hpp"
@@ -75,7 +76,7 @@ TEST_CASE("G11 a products | air interface moving at uniform p and u keeps them u
     const double t_end = 0.3 / speed;  // the interface crosses 30 % of the tube
     double worst_p = 0, worst_u = 0, worst_rho1 = 0;
     for (int k = 1; k <= 4; ++k) {
-      run_to(s, k * t_end / 4, 0.1);
+      run_to(s, k * t_end / 4, blastsim::test::validation_courant());
       const cip::HostGasFields h = s.to_host();
       const std::vector<double> pp = strip(h, h.p, Axis::x), uu = strip(h, h.u, Axis::x);
       for (int i = 0; i < n; ++i) {
@@ -111,7 +112,7 @@ TEST_CASE("G11 shock tubes of ANFO products into air against the exact solution"
     const double t = std::fmin((x0 - 0.05) / -exact.leftmost_speed(), (0.95 - x0) / exact.rightmost_speed());
     const int n = 800;
     cip::GasSolver s = products_tube(n, L, air, x0);
-    run_to(s, t, 0.1);
+    run_to(s, t, blastsim::test::validation_courant());
     const cip::HostGasFields h = s.to_host();
     const std::vector<double> rho = strip(h, h.rho, Axis::x), p = strip(h, h.p, Axis::x);
     double err = 0, norm = 0, p_sum = 0;
@@ -160,7 +161,7 @@ TEST_CASE("G11 products into thin air at a density ratio of 1e4: positive and fi
   cip::GasSolver s = products_tube(400, L, R, 0.4);
   double rho_min = 1e300, p_min = 1e300, a_min = 1, a_max = 0;
   for (int k = 1; k <= 10; ++k) {
-    run_to(s, k * t / 10, 0.1);
+    run_to(s, k * t / 10, blastsim::test::validation_courant());
     const cip::HostGasFields h = s.to_host();
     for (size_t i = 0; i < h.rho.size(); ++i) {
       REQUIRE(std::isfinite(h.rho[i]));
@@ -197,7 +198,7 @@ TEST_CASE("G11 closed box with a products disc: each material's mass and the ene
   cip::GasSolver s = make();
   const cip::GasTotals t0 = s.totals();
   auto advance = [](cip::GasSolver& g, int steps) {
-    for (int k = 0; k < steps; ++k) g.step(g.courant_dt(0.1));
+    for (int k = 0; k < steps; ++k) g.step(g.courant_dt(blastsim::test::validation_courant()));
   };
   advance(s, 100);
   // Checkpoint after 100 steps, then 100 more; a solver restarted from the checkpoint must end identical.

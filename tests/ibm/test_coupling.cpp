@@ -1,6 +1,7 @@
 //! \file test_coupling.cpp
 //! \brief Immersed-boundary coupling: masks and imposed velocities from a moving block, and docs/validation.md I1.
 #include "blastsim/fdem/gmsh_mesh.hpp"
+#include "validation_courant.hpp"
 #include "blastsim/core/backend.hpp"
 #include "blastsim/fdem/rock_analysis.hpp"
 #include "blastsim/ibm/blasthole_monitor.hpp"
@@ -184,7 +185,7 @@ TEST_CASE("I2: a shock hitting an immersed fixed rock block reflects with the ex
   const double rho5 = s2.rho * (r + m) / (m * r + 1);
   const double w_reflected = s2.rho * s2.u / (s2.rho - rho5);
   const double t_end = (wall - 0.5) / exact.right_shock_speed() + 0.04 / std::fabs(w_reflected);
-  while (gas.time() < t_end - 1e-12) coupler.step(std::fmin(coupler.stable_dt(0.1), t_end - gas.time()));
+  while (gas.time() < t_end - 1e-12) coupler.step(std::fmin(coupler.stable_dt(blastsim::test::validation_courant()), t_end - gas.time()));
   const cip::HostGasFields h = gas.to_host();
   double sum = 0;
   int count = 0;
@@ -225,7 +226,7 @@ TEST_CASE("I3: gas sealed in a hole of intact rock keeps its mass while the rock
   const double m0 = cavity_mass();
   const long inactive0 = coupler.inactive_cells();
   const cip::GasTotals g0 = gas.totals();
-  while (gas.time() < 1e-4) coupler.step(coupler.stable_dt(0.1));
+  while (gas.time() < 1e-4) coupler.step(coupler.stable_dt(blastsim::test::validation_courant()));
   const double m1 = cavity_mass();
   const fdem::RockEnergies e = rock.energies();
   // Energy budget printed only: at 1 MPa in air (0.1 MPa) the net work is a small difference of the hole's

@@ -3,6 +3,7 @@
 //! the gas's signal rate and the rock's largest speed read together; both are the values each solver's own
 //! reduction gives, and a non-finite rock in any substep still stops the run.
 #include "blastsim/core/backend.hpp"
+#include "validation_courant.hpp"
 #include "blastsim/core/error.hpp"
 #include "catch.hpp"
 #include "short_blast.hpp"
@@ -25,7 +26,7 @@ TEST_CASE("I7 one host wait a coupled step: signal rate and rock speed in one re
   ibm::GasRockCoupler& coupler = *blast.coupler;
   const int substeps = 3;
   auto dt_now = [&] { return std::min(0.1 / coupler.signal_rate(), substeps * 0.9 * rock.stable_dt()); };
-  coupler.step(std::min(gas.courant_dt(0.1), substeps * 0.9 * rock.stable_dt()), substeps);
+  coupler.step(std::min(gas.courant_dt(blastsim::test::validation_courant()), substeps * 0.9 * rock.stable_dt()), substeps);
   const long rebuilds = rock.contact_rebuilds();
   const long rock_steps = rock.steps();
   const LaunchCounts before = LaunchCounts::instance();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "blastsim/cip/gas_solver.hpp"
+#include "validation_courant.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 #include "blastsim/ibm/coupler.hpp"
@@ -37,7 +38,7 @@ struct ShortBlast {
   //! Coupled steps at Courant 0.1 and 0.9 of the rock's stable step to t_end [s].
   void run_to(double t_end) {
     while (gas.time() < t_end * (1 - 1e-12)) {
-      const double dt = std::min({gas.courant_dt(0.1), 0.9 * rock.stable_dt(), t_end - gas.time()});
+      const double dt = std::min({gas.courant_dt(blastsim::test::validation_courant()), 0.9 * rock.stable_dt(), t_end - gas.time()});
       coupler->step(dt);
     }
   }
