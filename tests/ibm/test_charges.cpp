@@ -34,6 +34,13 @@ cip::GasMaterials air_and_anfo() {
   return mat;
 }
 
+//! The coupler's steps at the validations' Courant number.
+ibm::CouplerOptions charge_step_options() {
+  ibm::CouplerOptions o;
+  o.courant = test::validation_courant();
+  return o;
+}
+
 //! ANFO at 800 kg/m3 with the detonation energy of its JWL set's Chapman-Jouguet state (G10).
 ibm::ChargeProducts anfo_products() {
   const cip::JwlParameters p = cip::EquationOfState::jwl_preset("ANFO").p;
@@ -42,7 +49,7 @@ ibm::ChargeProducts anfo_products() {
 
 //! A square block of rock [-b, b]^2 with holes, in air on an N x N grid over [-w, w]^2, charges in the holes.
 //! `rigid`: every rock node held at rest (a rigid hole wall). The steps come from the coupler's plan_step() at
-//! its default Courant number 0.1, which burns the charges due (those at t = 0 before the first dt) and lands
+//! the validations' Courant number (validation_courant(): the paper's 0.1 unless BLASTSIM_TEST_COURANT), which burns the charges due (those at t = 0 before the first dt) and lands
 //! a step on every initiation time.
 struct ChargedBlock {
   cip::GasSolver gas;
@@ -53,7 +60,7 @@ struct ChargedBlock {
       : gas(cip::GasGrid::from_box(N, N, -w, w, -w, w), air_and_anfo()),
         rock(fdem::build_topology(fdem::gmsh_rectangle_with_holes(-b, -b, b, b, holes, h).mesh), test::intact_rock(),
              test::HoleInRock::no_contact()),
-        coupler(gas, rock, test::table1_air) {
+        coupler(gas, rock, test::table1_air, charge_step_options()) {
     gas.initialise([](double, double) { return test::table1_air; });
     if (rigid) {
       std::vector<int> all(rock.node_count());
@@ -289,7 +296,7 @@ TEST_CASE("K6 a charge fired at t = 0 loads the rock as the same products placed
     fdem::RockSolver rock(
         fdem::build_topology(fdem::gmsh_rectangle_with_holes(-0.15, -0.15, 0.15, 0.15, {{{0.0, 0.0}, a}}, 0.012).mesh),
         test::intact_rock(), test::HoleInRock::no_contact());
-      ibm::GasRockCoupler coupler(gas, rock, test::table1_air);
+      ibm::GasRockCoupler coupler(gas, rock, test::table1_air, charge_step_options());
     gas.initialise([&](double x, double y) {
       return variant == 0 && x * x + y * y <= a * a ? cip::GasPoint{q.density, q.specific_energy, 0, 0, 1.0}
                                                    : test::table1_air;
