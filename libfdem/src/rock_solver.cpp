@@ -360,6 +360,7 @@ void carry_offsets(detail::RockArrays& a, int pairs, const DeviceVector<int>& of
 //! The contact offset of every candidate slot's pair (-1 for all when there are no pairs).
 DeviceVector<double> slot_offsets(const detail::RockArrays& a, int pairs) {
   const int used = a.grid.neighbour_offset.back();
+  count_host_wait();  // the host reads the lists' length
   DeviceVector<double> out(std::max(used, 1), -1.0);
   if (pairs > 0)
     for_each_index("fdem.grid.slot_offsets", used,
