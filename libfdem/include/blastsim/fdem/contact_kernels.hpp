@@ -10,8 +10,8 @@
 //! edge_against_target(); it returns the loads on C's two edge nodes and the reaction on T's three nodes,
 //! applied at the same points, so linear and angular momentum balance exactly.
 //!
-//! An offset s in [0, 1) replaces phi by (phi - s)^+ on both triangles of a pair: the potentials of the same
-//! triangles shrunk towards their centroids, so the pair pushes only against overlap beyond depth s. A pair
+//! An offset s in [0, 1) replaces phi by (phi - s)^+ on both triangles of a pair: (1 - s) times the potential of
+//! each triangle shrunk by 1 - s about its centroid, so the pair pushes only against overlap beyond depth s. A pair
 //! whose corners met at a bonded mesh vertex enters contact with s equal to the depth it already had
 //! (docs/fdem-solver.md, "Which pairs touch"); s = 0 is Munjiza's contact, evaluated by the same arithmetic.
 #pragma once
