@@ -1,11 +1,14 @@
 //! \file test_contact.cpp
 //! \brief Munjiza's distributed-potential contact of one pair against closed-form loads, with and without the
 //! offset of pairs that meet at a mesh vertex (docs/fdem-solver.md, "Which pairs touch").
+#include "blastsim/fdem/mesh.hpp"
+#include "blastsim/fdem/rock_solver.hpp"
 #include "blastsim/fdem/rock_step_kernels.hpp"
 #include "catch.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 using namespace blastsim::fdem;
 
@@ -81,4 +84,80 @@ TEST_CASE("A pair that meets at a vertex enters contact without a load and pushe
   CHECK(!out.touching);
   CHECK(next_contact_offset(s, out.depth) == Approx(1.5 * c0).epsilon(1e-12));
   CHECK(next_contact_offset(s, 0.0) == 0.0);
+}
+
+TEST_CASE("In the solver a corner pair enters contact at its vertex's first broken joint without doing work",
+          "[fdem][contact]") {
+  // 4 x 4 squares of 10 mm of the paper's rock at rest. Triangle A's copy of the centre vertex is pushed 5 um
+  // out through the vertex, so A's corner pokes into a triangle B across it (they share only that vertex): the
+  // overlap that a softening joint's slip builds up (5 um: no joint breaks from it, checked below). While the vertex's joints hold, the pair is no contact;
+  // then one joint at the vertex, away from A, breaks. Munjiza's contact would now push A and B apart at
+  // once (evaluated below on the same positions); the entering pair carries no load instead, so the solver's
+  // contact work stays exactly 0 in that step.
+  const FdemTopology topo = build_topology(structured_rectangle(4, 4, 0.0, 0.04, 0.0, 0.04));
+  RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
+  const RockSnapshot s0 = s.snapshot();
+  int centre = -1;
+  for (size_t n = 0; n < s0.x0.size(); ++n)
+    if (std::fabs(s0.x0[n] - 0.02) < 1e-12 && std::fabs(s0.y0[n] - 0.02) < 1e-12) centre = topo.node_vertex[n];
+  REQUIRE(centre >= 0);
+  std::vector<int> fan;  // nodes that copy the centre vertex
+  for (size_t n = 0; n < s0.x0.size(); ++n)
+    if (topo.node_vertex[n] == centre) fan.push_back(static_cast<int>(n));
+  const int a_node = fan[0], A = a_node / 3;
+  auto edge_neighbours = [&](int t, int u) {
+    for (const Joint& j : topo.joints)
+      if ((j.triangle_a == t && j.triangle_b == u) || (j.triangle_a == u && j.triangle_b == t)) return true;
+    return false;
+  };
+  // Push A's corner out through the vertex, along the line from A's centroid.
+  std::vector<double> xy(2 * s0.x.size());
+  for (size_t n = 0; n < s0.x.size(); ++n) xy[2 * n] = s0.x[n], xy[2 * n + 1] = s0.y[n];
+  const double cx = (s0.x[3 * A] + s0.x[3 * A + 1] + s0.x[3 * A + 2]) / 3, cy = (s0.y[3 * A] + s0.y[3 * A + 1] + s0.y[3 * A + 2]) / 3;
+  const double dx = 0.02 - cx, dy = 0.02 - cy, d = std::hypot(dx, dy), push = 5e-6;
+  xy[2 * a_node] += push * dx / d, xy[2 * a_node + 1] += push * dy / d;
+  s.set_positions(xy);
+  auto corners = [](const RockSnapshot& r, int t, Vec2 out[3]) {
+    for (int k = 0; k < 3; ++k) out[k] = {r.x[3 * t + k], r.y[3 * t + k]};
+  };
+  const RockSnapshot s1 = s.snapshot();
+  int B = -1;
+  for (const int n : fan) {
+    const int t = n / 3;
+    Vec2 pa[3], pb[3];
+    corners(s1, A, pa), corners(s1, t, pb);
+    if (t != A && !edge_neighbours(A, t) && triangles_overlap(pa, pb)) B = t;
+  }
+  REQUIRE(B >= 0);
+  // A joint at the centre vertex away from A and its edge neighbours, whose nodes the first step leaves in place.
+  int joint = -1;
+  auto near_a = [&](int t) { return t == A || edge_neighbours(A, t); };
+  for (size_t j = 0; j < topo.joints.size(); ++j) {
+    const Joint& J = topo.joints[j];
+    const bool at_centre = topo.node_vertex[J.a0] == centre || topo.node_vertex[J.a1] == centre;
+    if (at_centre && !near_a(J.triangle_a) && !near_a(J.triangle_b)) joint = static_cast<int>(j);
+  }
+  REQUIRE(joint >= 0);
+  const double dt = 0.1 * s.stable_dt();
+  s.step(dt);
+  CHECK(s.energies().broken_joints == 0);
+  CHECK(s.energies().contact_work == 0.0);  // bonded: no contact
+  s.break_joints({joint});
+  const RockSnapshot s2 = s.snapshot();
+  s.step(dt);
+  const double entry_work = s.energies().contact_work;
+  CHECK(s.energies().broken_joints == 1);
+  // What Munjiza's contact (offset 0) would have put on A and B at that step.
+  Vec2 x[2][3], v[2][3] = {{{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
+  double m[2][3];
+  corners(s2, A, x[0]), corners(s2, B, x[1]);
+  for (int k = 0; k < 3; ++k) m[0][k] = m[1][k] = 1.0;
+  const double p = RockOptions{}.contact_penalty_factor * RockMaterial::paper_table2().youngs_modulus;
+  const PairContact classic = pair_contact(x, v, m, p, 0.0, dt, 0.0);
+  const Vec2 fb = total(classic.f[1]);
+  std::printf("corner pair at a broken vertex: depth %.4e, Munjiza's load on B %.4e N/m; contact work in the entry step "
+              "%.3e J/m\n", classic.depth, std::hypot(fb.x, fb.y), entry_work);
+  CHECK(classic.touching);
+  CHECK(std::hypot(fb.x, fb.y) > 0);
+  CHECK(entry_work == 0.0);
 }
