@@ -3,6 +3,7 @@
 #include "blastsim/fdem/rock_solver.hpp"
 
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/csr.hpp"
 #include "blastsim/core/device_groups.hpp"
 #include "blastsim/core/error.hpp"
 #include "blastsim/fdem/rock_step_kernels.hpp"
@@ -172,16 +173,15 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.joints.separation.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.broken.assign(joints_, 0);
-  // Joints per mesh vertex (CSR): each joint touches the two vertices of its edge.
+  // Joints per mesh vertex (CSR): each joint touches the two vertices of its edge (its ends 2 j and 2 j + 1).
   const int vertices = nodes > 0 ? *std::max_element(vertex.begin(), vertex.end()) + 1 : 0;
-  std::vector<int> vertex_offset(vertices + 1, 0), vertex_joints(2 * joints_);
-  for (int j = 0; j < joints_; ++j) ++vertex_offset[vertex[topo.joints[j].a0] + 1], ++vertex_offset[vertex[topo.joints[j].a1] + 1];
-  for (int v = 0; v < vertices; ++v) vertex_offset[v + 1] += vertex_offset[v];
-  std::vector<int> fill(vertex_offset.begin(), vertex_offset.end() - 1);
-  for (int j = 0; j < joints_; ++j)
-    vertex_joints[fill[vertex[topo.joints[j].a0]]++] = j, vertex_joints[fill[vertex[topo.joints[j].a1]]++] = j;
+  std::vector<int> end_vertex(2 * static_cast<std::size_t>(joints_));
+  for (int j = 0; j < joints_; ++j) end_vertex[2 * j] = vertex[topo.joints[j].a0], end_vertex[2 * j + 1] = vertex[topo.joints[j].a1];
+  HostCsr at_vertex = group_by_key(end_vertex, vertices);
+  for (int& e : at_vertex.entry) e /= 2;  // the end's joint
+  const std::vector<int>& vertex_offset = at_vertex.offset;
   copy_from_host(a.vertex_joint_offset, vertex_offset);
-  copy_from_host(a.vertex_joints, vertex_joints.empty() ? std::vector<int>{0} : vertex_joints);
+  copy_from_host(a.vertex_joints, at_vertex.entry.empty() ? std::vector<int>{0} : at_vertex.entry);
   // Bonded: at least one joint there, none broken yet (a vertex without joints bonds nothing).
   std::vector<std::uint8_t> bonded(std::max(vertices, 1), 0);
   for (int v = 0; v < vertices; ++v) bonded[v] = vertex_offset[v + 1] > vertex_offset[v] ? 1 : 0;

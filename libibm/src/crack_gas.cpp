@@ -4,6 +4,7 @@
 
 #include "blastsim/core/device_groups.hpp"
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/csr.hpp"
 #include "blastsim/core/error.hpp"
 
 #include <sstream>
@@ -54,7 +55,7 @@ CrackGas::CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment
       a_(std::make_unique<detail::CrackArrays>()) {
   options_.validate();
   if (junctions < 0) throw InputError("crack gas: negative junction count");
-  std::vector<int> sj(2 * static_cast<std::size_t>(segments_)), offset(junctions + 1, 0);
+  std::vector<int> sj(2 * static_cast<std::size_t>(segments_));
   for (int s = 0; s < segments_; ++s)
     for (int e = 0; e < 2; ++e) {
       const int J = segment_ends[s][e];
@@ -62,20 +63,18 @@ CrackGas::CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment
         throw InputError("crack gas: segment " + std::to_string(s) + " ends at junction " + std::to_string(J) +
                          ", outside [0, " + std::to_string(junctions) + ")");
       sj[2 * s + e] = J;
-      ++offset[J + 1];
     }
+  const HostCsr ends = group_by_key(sj, junctions);  // each junction's segment ends, ascending
   for (int J = 0; J < junctions; ++J) {
-    if (offset[J + 1] > kCrackMaxDegree)
-      throw InputError("crack gas: junction " + std::to_string(J) + " joins " + std::to_string(offset[J + 1]) +
+    const int degree = ends.offset[J + 1] - ends.offset[J];
+    if (degree > kCrackMaxDegree)
+      throw InputError("crack gas: junction " + std::to_string(J) + " joins " + std::to_string(degree) +
                        " segment ends, at most " + std::to_string(kCrackMaxDegree) + " are supported");
-    offset[J + 1] += offset[J];
   }
-  std::vector<int> entry(offset[junctions]), fill(offset.begin(), offset.end() - 1);
-  for (int end = 0; end < 2 * segments_; ++end) entry[fill[sj[end]]++] = end;  // ascending within a junction
   detail::CrackArrays& a = *a_;
   copy_from_host(a.graph.segment_junction, sj);
-  copy_from_host(a.graph.junction_offset, offset);
-  copy_from_host(a.graph.junction_entry, entry);
+  copy_from_host(a.graph.junction_offset, ends.offset);
+  copy_from_host(a.graph.junction_entry, ends.entry);
   a.geometry.length.assign(segments_, 1.0);
   a.geometry.aperture.assign(segments_, options_.residual_aperture);
   a.segments.volume.assign(segments_, options_.residual_aperture);
