@@ -230,9 +230,23 @@ struct TransitionKernel {
     return rho(i, j) * cells.s.e.f(i, j) + k;
   }
 
+  //! Whether a cell of its 3 x 3 block (itself included) is covered in this update.
+  BLAST_HD bool dying_in_block(int i, int j) const {
+    for (int nj = j - 1; nj <= j + 1; ++nj)
+      for (int ni = i - 1; ni <= i + 1; ++ni)
+        if (dying(ni, nj)) return true;
+    return false;
+  }
+
   BLAST_HD void operator()(int i, int j) const {
-    cip::CellContent c = cells.own(i, j, cells.s.rho.f(i, j) * cells.s.e.f(i, j));
     bool moved = old_active(i, j) != update.active(i, j);
+    // Most cells keep their state and have no covered cell beside them: nothing moves, and `next` is not read
+    // (ApplyTransitionKernel), so it is left as it is.
+    if (!moved && (reset || !old_active(i, j) || !dying_in_block(i, j))) {
+      update.changed(i, j) = 0;
+      return;
+    }
+    cip::CellContent c = cells.own(i, j, cells.s.rho.f(i, j) * cells.s.e.f(i, j));
     TransitionLedger& led = ledger.transitions[static_cast<index_t>(j) * nx + i];
     if (moved) {  // covered or uncovered: the ambient state
       if (!reset) {
