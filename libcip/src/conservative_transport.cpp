@@ -62,14 +62,36 @@ void GasSolver::transport_conservatively(double dt) {
   const BoundaryConditions& bc = options_.boundaries;
   const bool wl = bc.kind(left) == BoundaryKind::wall, wr = bc.kind(right) == BoundaryKind::wall;
   const bool wb = bc.kind(bottom) == BoundaryKind::wall, wt = bc.kind(top) == BoundaryKind::wall;
-  for_each_cell_fused(
-      "cip.transport.momentum", fuse,
-      cell_part("cip.transport.momentum_u", IndexBox{px || wl ? 0 : 1, wr ? g.nx + 1 : g.nx, 0, g.ny},
-                MomentumKernel{0, s, v.now, Fx, Fy, v.ib.u_prescribed, v.ib.u_imposed, Du, ledgers.solid_work_u,
-                               g.nx, g.ny, px, py, wl, wr, dt, g.dx, g.dy, lim}),
-      cell_part("cip.transport.momentum_v", IndexBox{0, g.nx, py || wb ? 0 : 1, wt ? g.ny + 1 : g.ny},
-                MomentumKernel{1, s, v.now, Fx, Fy, v.ib.v_prescribed, v.ib.v_imposed, Dv, ledgers.solid_work_v,
-                               g.nx, g.ny, px, py, wb, wt, dt, g.dx, g.dy, lim}));
+  const IndexBox u_faces{px || wl ? 0 : 1, wr ? g.nx + 1 : g.nx, 0, g.ny};
+  const IndexBox v_faces{0, g.nx, py || wb ? 0 : 1, wt ? g.ny + 1 : g.ny};
+  const DualFaces dual_u{0, s, Fx, Fy, g.nx, g.ny, px, py, dt, g.dx, g.dy, lim};
+  const DualFaces dual_v{1, s, Fx, Fy, g.nx, g.ny, px, py, dt, g.dx, g.dy, lim};
+  const MomentumKernel momentum_u{dual_u, v.now, v.ib.u_prescribed, v.ib.u_imposed, Du, ledgers.solid_work_u, wl, wr, {}};
+  const MomentumKernel momentum_v{dual_v, v.now, v.ib.v_prescribed, v.ib.v_imposed, Dv, ledgers.solid_work_v, wb, wt, {}};
+  if (fuse) {
+    // One launch for both velocities; each face computes its four dual faces' fluxes (on a GPU arithmetic is
+    // cheaper than the traffic of storing them).
+    for_each_cell_fused("cip.transport.momentum", fuse, cell_part("cip.transport.momentum_u", u_faces, momentum_u),
+                        cell_part("cip.transport.momentum_v", v_faces, momentum_v));
+  } else {
+    // Host threads: each dual face's flux once (DualFluxKernel), then the faces read them; half the swept values.
+    const Field2D<double> am = w.dual_along_momentum, ak = w.dual_along_kinetic;
+    const Field2D<double> cm = w.dual_across_momentum, ck = w.dual_across_kinetic;
+    const SharedDualFluxes shared{am, ak, cm, ck};
+    for (const MomentumKernel* k : {&momentum_u, &momentum_v}) {
+      const bool x = k->d.axis == 0;
+      const IndexBox f = x ? u_faces : v_faces;
+      const IndexBox along = x ? IndexBox{f.i0 - 1, f.i1, f.j0, f.j1} : IndexBox{f.i0, f.i1, f.j0 - 1, f.j1};
+      const IndexBox across = x ? IndexBox{f.i0, f.i1, f.j0, f.j1 + 1} : IndexBox{f.i0, f.i1 + 1, f.j0, f.j1};
+      for_each_cell(x ? "cip.transport.dual_u.along" : "cip.transport.dual_v.along", along.i0, along.i1, along.j0,
+                    along.j1, DualFluxKernel{k->d, 0, am, ak});
+      for_each_cell(x ? "cip.transport.dual_u.across" : "cip.transport.dual_v.across", across.i0, across.i1,
+                    across.j0, across.j1, DualFluxKernel{k->d, 1, cm, ck});
+      MomentumKernel with_shared = *k;
+      with_shared.shared = shared;
+      for_each_cell(x ? "cip.transport.momentum_u" : "cip.transport.momentum_v", f.i0, f.i1, f.j0, f.j1, with_shared);
+    }
+  }
   for_each_cell("cip.transport.energy", 0, g.nx, 0, g.ny,
                 EnergyUpdateKernel{v.now, active, rho_e, Du, Dv, ledgers.positivity_heat, g.nx, g.ny, px, py,
                                    mat, m});

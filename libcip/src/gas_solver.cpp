@@ -81,6 +81,11 @@ GasSolver::GasSolver(const GasGrid& grid, const GasMaterials& materials, const G
   if (options.boundaries.unpaired_periodic_axis() >= 0)
     throw InputError("a periodic boundary must be set on both opposite sides");
   a_->resize(grid.padded_shape().size(), 2 * static_cast<index_t>(grid.nx + grid.ny), materials.traced());
+  if (fuse_kernels() || options.transport != Transport::conservative) {  // only the host-thread momentum transport
+    for (auto* dual : {&a_->work.dual_along_momentum, &a_->work.dual_along_kinetic, &a_->work.dual_across_momentum,
+                       &a_->work.dual_across_kinetic})
+      dual->assign(0, 0.0);
+  }
 }
 
 GasSolver::~GasSolver() = default;

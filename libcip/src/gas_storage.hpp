@@ -23,7 +23,11 @@ namespace blastsim::cip::detail {
   X(double, internal_energy_density, "rho e of each cell during the transport [J/m3]")             \
   X(double, dissipation_u, "kinetic energy dissipated per x-face in the transport [J/m3]")         \
   X(double, dissipation_v, "kinetic energy dissipated per y-face [J/m3]")                           \
-  X(std::uint8_t, troubled, "1 where the transport fell back to donor-cell fluxes this step")
+  X(std::uint8_t, troubled, "1 where the transport fell back to donor-cell fluxes this step")                \
+  X(double, dual_along_momentum, "momentum flux through the along dual faces of one velocity (DualFluxKernel)")   \
+  X(double, dual_along_kinetic, "kinetic-energy flux through them")                                              \
+  X(double, dual_across_momentum, "momentum flux through the across dual faces")                                 \
+  X(double, dual_across_kinetic, "kinetic-energy flux through them")
 //! Cumulative arrays on the padded shape, checkpointed (GasSolver::immersed_face_work(), positivity_energy()).
 #define BLASTSIM_GAS_LEDGERS(X)                                                                     \
   X(double, solid_work_u, "energy immersed x-faces gave the gas, per face [J/m3]")                 \

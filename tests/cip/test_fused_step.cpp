@@ -110,10 +110,11 @@ TEST_CASE("G12 fused gas step: the unfused step's bytes in fewer launches, no ho
     CHECK(fused.per_step.host_waits == 0);  // the gas step alone never waits (dt is read by the caller)
     CHECK(alone.per_step.host_waits == 0);
     // Fused groups: face velocities (2 -> 1), derivatives (3 -> 1), advection (3 -> 1), and in the conservative
-    // transport mass fluxes (2 -> 1) and momentum (2 -> 1); with one gas also the donor-cell fluxes of the
-    // troubled-cell passes (2 -> 1, kTroubledPasses times).
+    // transport mass fluxes (2 -> 1) and momentum (6 -> 1: unfused, the dual faces' fluxes of each velocity are
+    // computed once in two launches before its momentum launch; fused, each face computes its own); with one gas
+    // also the donor-cell fluxes of the troubled-cell passes (2 -> 1, kTroubledPasses times).
     const bool conservative = c.options.transport == cip::Transport::conservative;
-    const long saved = conservative ? (c.materials.two ? 7 : 7 + cip::kTroubledPasses) : 5;
+    const long saved = conservative ? (c.materials.two ? 11 : 11 + cip::kTroubledPasses) : 5;
     CHECK(alone.per_step.launches - fused.per_step.launches == saved);
   }
 }

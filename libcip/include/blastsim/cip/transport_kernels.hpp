@@ -359,77 +359,138 @@ struct CellFluxUpdateKernel {
   }
 };
 
-//! Momentum transport of one face velocity (axis 0: u on x-faces; axis 1: v on y-faces) over its dual cell,
-//! and the kinetic energy it dissipates [J/m3]. `periodic_*`: index wrap of cells in x / y.
-struct MomentumKernel {
+//! What one dual face of the face-velocity transport carries per unit area and time, over the dual cell's
+//! width h: momentum (mass flux x swept value / h) and kinetic energy (mass flux x value^2 / 2 / h). A dual face
+//! lies between two faces of the grid and belongs to both their dual cells.
+struct DualFlux {
+  double momentum, kinetic;
+};
+
+//! The dual faces of the face-velocity transport (axis 0: u on x-faces; axis 1: v on y-faces): along the axis
+//! at cell centres, between faces (c, j) and (c + 1, j) for u; across it at cell corners, between faces (i, r - 1)
+//! and (i, r) for u (transposed for v). Each is shared by two faces' dual cells, so its swept value can be
+//! computed once (DualFluxKernel) or by each face (MomentumKernel without `shared`): the same arithmetic.
+struct DualFaces {
   int axis;
   GasStateReadView s;
-  GasStateView n;
   Field2D<const double> Fx, Fy;
-  Field2D<const std::uint8_t> prescribed;
-  Field2D<const double> imposed;
-  Field2D<double> dissipation;
-  Field2D<double> solid_work;  // cumulative energy the solid gave this face's gas [J/m3]
   int nx, ny;
   bool periodic_x, periodic_y;
-  bool wall_low, wall_high;  // walls on the two sides normal to this face set
   double dt, dx, dy;
   Limiter limiter;
 
   BLAST_HD int wx(int i) const { return periodic_x ? (i < 0 ? i + nx : (i >= nx ? i - nx : i)) : i; }
   BLAST_HD int wy(int j) const { return periodic_y ? (j < 0 ? j + ny : (j >= ny ? j - ny : j)) : j; }
 
-  BLAST_HD void operator()(int i, int j) const {
-    const CipFieldReadView V = axis == 0 ? s.u : s.v;
-    const Field2D<double> out = axis == 0 ? n.u.f : n.v.f;
+  //! Mass flux [kg/(m2 s)] through the along dual face at (a, b): cell (c, j) for u, (i, c) for v.
+  BLAST_HD double along_mass_flux(int a, int b) const {
+    return axis == 0 ? 0.5 * (Fx(wx(a), b) + Fx(wx(a) + 1, b)) : 0.5 * (Fy(a, wy(b)) + Fy(a, wy(b) + 1));
+  }
+  //! Mass flux through the across dual face at (a, b): corner (i, r) for u, (r, j) for v.
+  BLAST_HD double across_mass_flux(int a, int b) const {
+    return axis == 0 ? 0.5 * (Fy(wx(a - 1), b) + Fy(a, b)) : 0.5 * (Fx(a, wy(b - 1)) + Fx(a, b));
+  }
+  //! Swept value of the face velocity through the along dual face at (a, b).
+  BLAST_HD double along_value(int a, int b) const {
     const Field2D<const double>& u = s.u.f;
     const Field2D<const double>& v = s.v.f;
+    if (axis == 0) {
+      const double w = 0.5 * (u(a, b) + u(a + 1, b)), w_t = 0.5 * (v(a, b) + v(a, b + 1));
+      return swept_value_at(CipValues{s.u}, 0, a, b, w, w_t, dt, dx, dy, limiter);
+    }
+    const double w = 0.5 * (v(a, b) + v(a, b + 1)), w_t = 0.5 * (u(a, b) + u(a + 1, b));
+    return swept_value_at(CipValues{s.v}, 1, a, b, w, w_t, dt, dy, dx, limiter);
+  }
+  //! Swept value through the across dual face at (a, b).
+  BLAST_HD double across_value(int a, int b) const {
+    const Field2D<const double>& u = s.u.f;
+    const Field2D<const double>& v = s.v.f;
+    if (axis == 0) {
+      const int ia = wx(a - 1);
+      const double wc = 0.5 * (v(ia, b) + v(a, b)), wc_t = 0.5 * (u(a, b - 1) + u(a, b));
+      return swept_value_at(CipValues{s.u}, 1, a, b - 1, wc, wc_t, dt, dy, dx, limiter);
+    }
+    const int ja = wy(b - 1);
+    const double wc = 0.5 * (u(a, ja) + u(a, b)), wc_t = 0.5 * (v(a - 1, b) + v(a, b));
+    return swept_value_at(CipValues{s.v}, 0, a - 1, b, wc, wc_t, dt, dx, dy, limiter);
+  }
+  //! Width of the dual cell along the dual face's normal: dx or dy.
+  BLAST_HD double along_width() const { return axis == 0 ? dx : dy; }
+  BLAST_HD double across_width() const { return axis == 0 ? dy : dx; }
+  //! What a dual face carries (DualFlux); zero through one with no mass flux (inside the rock, where every face
+  //! is closed), whose swept value is not computed. Half the faces of the single-hole grid are covered by rock.
+  BLAST_HD DualFlux along(int a, int b) const { return carried(along_mass_flux(a, b), along_width(), [&] { return along_value(a, b); }); }
+  BLAST_HD DualFlux across(int a, int b) const { return carried(across_mass_flux(a, b), across_width(), [&] { return across_value(a, b); }); }
+  template <class Value>
+  BLAST_HD static DualFlux carried(double mass_flux, double h, Value value) {
+    if (mass_flux == 0.0) return {0.0, 0.0};
+    const double q = value();
+    return {mass_flux * q / h, mass_flux * 0.5 * q * q / h};
+  }
+};
+
+//! The dual faces' fluxes of one axis computed once each (DualFaces::along() on `part` 0 over the cells (c, j) for
+//! u, across() on part 1 over the corners), for MomentumKernel's `shared` path (docs/gas-solver.md, "One step").
+struct DualFluxKernel {
+  DualFaces d;
+  int part;  // 0: along, 1: across
+  Field2D<double> momentum, kinetic;
+  BLAST_HD void operator()(int a, int b) const {
+    const DualFlux f = part == 0 ? d.along(a, b) : d.across(a, b);
+    momentum(a, b) = f.momentum;
+    kinetic(a, b) = f.kinetic;
+  }
+};
+
+//! The four shared dual-face flux arrays of one axis (DualFluxKernel's output; empty when each face computes its
+//! own: `along_momentum.data` null).
+struct SharedDualFluxes {
+  Field2D<const double> along_momentum, along_kinetic, across_momentum, across_kinetic;
+};
+
+//! Momentum transport of one face velocity (axis 0: u on x-faces; axis 1: v on y-faces) over its dual cell,
+//! and the kinetic energy it dissipates [J/m3]. `periodic_*`: index wrap of cells in x / y. The four dual faces'
+//! fluxes come from `shared` when it has them (DualFluxKernel, computed once per dual face) or are computed
+//! here (DualFaces): the same values either way, so the same bytes out.
+struct MomentumKernel {
+  DualFaces d;
+  GasStateView n;
+  Field2D<const std::uint8_t> prescribed;
+  Field2D<const double> imposed;
+  Field2D<double> dissipation;
+  Field2D<double> solid_work;  // cumulative energy the solid gave this face's gas [J/m3]
+  bool wall_low, wall_high;  // walls on the two sides normal to this face set
+  SharedDualFluxes shared;
+
+  BLAST_HD void operator()(int i, int j) const {
+    const int axis = d.axis;
+    const GasStateReadView& s = d.s;
+    const double dt = d.dt;
+    const CipFieldReadView V = axis == 0 ? s.u : s.v;
+    const Field2D<double> out = axis == 0 ? n.u.f : n.v.f;
     // The two cells beside the face: (ia, ja) on the low side, (i, j) on the high side.
-    const int ia = axis == 0 ? wx(i - 1) : i, ja = axis == 0 ? j : wy(j - 1);
+    const int ia = axis == 0 ? d.wx(i - 1) : i, ja = axis == 0 ? j : d.wy(j - 1);
     const double m_old = 0.5 * (s.rho.f(ia, ja) + s.rho.f(i, j));
     const double m_new = 0.5 * (n.rho.f(ia, ja) + n.rho.f(i, j));
     const double w0 = V.f(i, j);
     double flux = 0.0, ke_flux = 0.0;  // net outflow of momentum and of kinetic energy [per m3 and s]
-    // Through a dual face with no mass flux (inside the rock, where every face is closed) nothing is carried:
-    // its swept value is not computed (mass_flux x value would add an exact zero). Half the faces of the
-    // single-hole grid are covered by rock.
-    auto add = [&](double sign, double mass_flux, double h, auto swept) {
-      if (mass_flux == 0.0) return;
-      const double value = swept();
-      flux += sign * mass_flux * value / h;
-      ke_flux += sign * mass_flux * 0.5 * value * value / h;
+    const bool have_shared = shared.along_momentum.data != nullptr;
+    auto add = [&](double sign, double mass_flux, const Field2D<const double>& mom, const Field2D<const double>& ke,
+                   int a, int b, auto compute) {
+      if (mass_flux == 0.0) return;  // nothing carried (DualFaces::carried())
+      const DualFlux f = have_shared ? DualFlux{mom(a, b), ke(a, b)} : compute();
+      flux += sign * f.momentum;
+      ke_flux += sign * f.kinetic;
     };
     for (int side = 0; side < 2; ++side) {
       const double sign = side == 0 ? -1.0 : 1.0;
-      if (axis == 0) {
-        // Along x: dual face at the centre of cell c (c = i-1 or i), between x-faces c and c+1.
-        const int c = side == 0 ? i - 1 : i;
-        const double Fd = 0.5 * (Fx(wx(c), j) + Fx(wx(c) + 1, j));
-        add(sign, Fd, dx, [&] {
-          const double w = 0.5 * (u(c, j) + u(c + 1, j)), w_t = 0.5 * (v(c, j) + v(c, j + 1));
-          return swept_value_at(CipValues{V}, 0, c, j, w, w_t, dt, dx, dy, limiter);
-        });
-        // Across (y): dual face at the corner on y-face row r = j or j+1, between u(i, r-1) and u(i, r).
-        const int r = side == 0 ? j : j + 1;
-        const double Fc = 0.5 * (Fy(ia, r) + Fy(i, r));
-        add(sign, Fc, dy, [&] {
-          const double wc = 0.5 * (v(ia, r) + v(i, r)), wc_t = 0.5 * (u(i, r - 1) + u(i, r));
-          return swept_value_at(CipValues{V}, 1, i, r - 1, wc, wc_t, dt, dy, dx, limiter);
-        });
-      } else {
-        const int c = side == 0 ? j - 1 : j;
-        const double Fd = 0.5 * (Fy(i, wy(c)) + Fy(i, wy(c) + 1));
-        add(sign, Fd, dy, [&] {
-          const double w = 0.5 * (v(i, c) + v(i, c + 1)), w_t = 0.5 * (u(i, c) + u(i + 1, c));
-          return swept_value_at(CipValues{V}, 1, i, c, w, w_t, dt, dy, dx, limiter);
-        });
-        const int r = side == 0 ? i : i + 1;
-        const double Fc = 0.5 * (Fx(r, ja) + Fx(r, j));
-        add(sign, Fc, dx, [&] {
-          const double wc = 0.5 * (u(r, ja) + u(r, j)), wc_t = 0.5 * (v(r - 1, j) + v(r, j));
-          return swept_value_at(CipValues{V}, 0, r - 1, j, wc, wc_t, dt, dx, dy, limiter);
-        });
-      }
+      // Along the axis: the dual face at the centre of the cell on this side; across it: at the corners.
+      const int ac = axis == 0 ? (side == 0 ? i - 1 : i) : i, bc = axis == 0 ? j : (side == 0 ? j - 1 : j);
+      const int ar = axis == 0 ? i : (side == 0 ? i : i + 1), br = axis == 0 ? (side == 0 ? j : j + 1) : j;
+      add(sign, d.along_mass_flux(ac, bc), shared.along_momentum, shared.along_kinetic, ac, bc,
+          [&] { return d.along(ac, bc); });
+      add(sign, d.across_mass_flux(ar, br), shared.across_momentum, shared.across_kinetic, ar, br,
+          [&] { return d.across(ar, br); });
     }
     // A wall face stays at rest and an immersed (prescribed) face moves with the solid: the kinetic energy
     // carried into its dual cell that the face cannot keep becomes heat, as for any face. At a moving immersed
@@ -437,7 +498,7 @@ struct MomentumKernel {
     // inactive cell whose ambient density does not follow the transport): that energy is not taken from the
     // gas's internal energy (beside a fast crack jet it drove a cold cell's negative) but counted as work of
     // the solid on the gas, summed in `solid_work` for the coupled budget (docs/gas-solver.md).
-    const int k = axis == 0 ? i : j, n_cells = axis == 0 ? nx : ny;
+    const int k = axis == 0 ? i : j, n_cells = axis == 0 ? d.nx : d.ny;
     const bool wall_face = (k == 0 && wall_low) || (k == n_cells && wall_high);
     const double w_new = prescribed(i, j) ? imposed(i, j) : (wall_face ? 0.0 : (m_old * w0 - dt * flux) / m_new);
     out(i, j) = w_new;
