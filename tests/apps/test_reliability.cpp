@@ -267,3 +267,21 @@ TEST_CASE("Reliability: a seeded fuzz over the newer tables keeps the exit-code 
   std::printf("reliability fuzz: 24 override sets over the newer tables: %d ran (exit 0), %d refused (exit 2), %d "
               "unstable (exit 3), %d other; no CSV with a non-finite value\n", counts[0], counts[1], counts[2], counts[3]);
 }
+
+TEST_CASE("Reliability: every bundled example input passes --check", "[app][reliability][examples]") {
+  // The examples are what a user runs first; a key renamed or a bound tightened must not leave one of them
+  // refused. --check reads and validates the whole case (mesh, charges, probes) without running it.
+  int checked = 0;
+  for (const fs::directory_entry& d : fs::directory_iterator(BLASTSIM_EXAMPLES_DIR)) {
+    if (!d.is_directory()) continue;
+    for (const fs::directory_entry& e : fs::directory_iterator(d.path())) {
+      if (e.path().extension() != ".toml") continue;
+      const Run r = run_driver(e.path(), {"--check"}, "example_check");
+      INFO(e.path().string() << ": " << r.err);
+      CHECK(r.status == 0);
+      ++checked;
+    }
+  }
+  std::printf("Reliability: %d example inputs pass --check\n", checked);
+  CHECK(checked >= 10);
+}
