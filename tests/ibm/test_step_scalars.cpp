@@ -25,7 +25,7 @@ TEST_CASE("I7 one host wait a coupled step: signal rate and rock speed in one re
   fdem::RockSolver& rock = blast.rock;
   ibm::GasRockCoupler& coupler = *blast.coupler;
   const int substeps = 3;
-  auto dt_now = [&] { return std::min(0.1 / coupler.signal_rate(), substeps * 0.9 * rock.stable_dt()); };
+  auto dt_now = [&] { return std::min(blastsim::test::validation_courant() / coupler.signal_rate(), substeps * 0.9 * rock.stable_dt()); };
   coupler.step(std::min(gas.courant_dt(blastsim::test::validation_courant()), substeps * 0.9 * rock.stable_dt()), substeps);
   const long rebuilds = rock.contact_rebuilds();
   const long rock_steps = rock.steps();

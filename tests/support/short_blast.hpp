@@ -35,7 +35,8 @@ struct ShortBlast {
   ShortBlast(const ShortBlast&) = delete;  // the coupler holds references to the solvers
   ShortBlast& operator=(const ShortBlast&) = delete;
 
-  //! Coupled steps at Courant 0.1 and 0.9 of the rock's stable step to t_end [s].
+  //! Coupled steps at the validations' Courant number (validation_courant()) and 0.9 of the rock's stable step to
+  //! t_end [s].
   void run_to(double t_end) {
     while (gas.time() < t_end * (1 - 1e-12)) {
       const double dt = std::min({gas.courant_dt(blastsim::test::validation_courant()), 0.9 * rock.stable_dt(), t_end - gas.time()});

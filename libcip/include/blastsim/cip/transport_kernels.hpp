@@ -475,10 +475,10 @@ struct MomentumKernel {
     const double w0 = V.f(i, j);
     double flux = 0.0, ke_flux = 0.0;  // net outflow of momentum and of kinetic energy [per m3 and s]
     const bool have_shared = shared.along_momentum.data != nullptr;
-    auto add = [&](double sign, double mass_flux, const Field2D<const double>& mom, const Field2D<const double>& ke,
-                   int a, int b, auto compute) {
+    auto add = [&](double sign, double mass_flux, double h, const Field2D<const double>& mom,
+                   const Field2D<const double>& ke, int a, int b, auto value) {
       if (mass_flux == 0.0) return;  // nothing carried (DualFaces::carried())
-      const DualFlux f = have_shared ? DualFlux{mom(a, b), ke(a, b)} : compute();
+      const DualFlux f = have_shared ? DualFlux{mom(a, b), ke(a, b)} : DualFaces::carried(mass_flux, h, value);
       flux += sign * f.momentum;
       ke_flux += sign * f.kinetic;
     };
@@ -487,10 +487,10 @@ struct MomentumKernel {
       // Along the axis: the dual face at the centre of the cell on this side; across it: at the corners.
       const int ac = axis == 0 ? (side == 0 ? i - 1 : i) : i, bc = axis == 0 ? j : (side == 0 ? j - 1 : j);
       const int ar = axis == 0 ? i : (side == 0 ? i : i + 1), br = axis == 0 ? (side == 0 ? j : j + 1) : j;
-      add(sign, d.along_mass_flux(ac, bc), shared.along_momentum, shared.along_kinetic, ac, bc,
-          [&] { return d.along(ac, bc); });
-      add(sign, d.across_mass_flux(ar, br), shared.across_momentum, shared.across_kinetic, ar, br,
-          [&] { return d.across(ar, br); });
+      add(sign, d.along_mass_flux(ac, bc), d.along_width(), shared.along_momentum, shared.along_kinetic, ac, bc,
+          [&] { return d.along_value(ac, bc); });
+      add(sign, d.across_mass_flux(ar, br), d.across_width(), shared.across_momentum, shared.across_kinetic, ar, br,
+          [&] { return d.across_value(ar, br); });
     }
     // A wall face stays at rest and an immersed (prescribed) face moves with the solid: the kinetic energy
     // carried into its dual cell that the face cannot keep becomes heat, as for any face. At a moving immersed
