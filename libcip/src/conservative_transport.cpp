@@ -25,15 +25,16 @@ void GasSolver::transport_conservatively(double dt) {
   const detail::MaterialWork<Access::read_write> mw = a_->material_work.view(sh);
   const Field2D<double> Mx = mw.products_flux_x, My = mw.products_flux_y, Ax = mw.alpha_flux_x, Ay = mw.alpha_flux_y;
   const Field2D<double> Wx = mw.volume_flux_x, Wy = mw.volume_flux_y;
+  const Field2D<double> Px = mw.products_energy_flux_x, Py = mw.products_energy_flux_y, E1 = mw.products_energy;
   const GasMaterials& mat = materials_;
   const bool fuse = fuse_kernels();
   const Limiter lim = options_.limiter;
   for_each_cell_fused(
       "cip.transport.flux", fuse,
       cell_part("cip.transport.flux_x", IndexBox{0, g.nx + 1, 0, g.ny},
-                MassFluxKernel{0, s, active, Fx, Ex, dt, g.dx, g.dy, lim, mat, m, Mx, Ax, Wx}),
+                MassFluxKernel{0, s, active, Fx, Ex, dt, g.dx, g.dy, lim, mat, m, Mx, Ax, Wx, Px}),
       cell_part("cip.transport.flux_y", IndexBox{0, g.nx, 0, g.ny + 1},
-                MassFluxKernel{1, s, active, Fy, Ey, dt, g.dy, g.dx, lim, mat, m, My, Ay, Wy}));
+                MassFluxKernel{1, s, active, Fy, Ey, dt, g.dy, g.dx, lim, mat, m, My, Ay, Wy, Py}));
   if (!mat.two && lim != Limiter::none) {
     // Troubled cells take donor-cell fluxes on their faces; a second check catches the neighbours whose
     // update those faces changed (TroubledCellKernel).
@@ -53,7 +54,7 @@ void GasSolver::transport_conservatively(double dt) {
   }
   for_each_cell("cip.transport.cells", 0, g.nx, 0, g.ny,
                 CellFluxUpdateKernel{s, v.now, active, Fx, Fy, Ex, Ey, rho_e, dt, g.dx, g.dy, mat.two, mat.traced(), m, Mx, My, Ax,
-                                     Ay, Wx, Wy});
+                                     Ay, Wx, Wy, mat, Px, Py, E1});
   if (mat.traced()) fill_material_ghosts(m, g, options_.boundaries);
   // Interior faces, and wall faces (held at rest, their incoming kinetic energy turned into heat). Outflow
   // faces are set by the ghost fill (characteristic condition); what they carry leaves the domain.
@@ -94,7 +95,7 @@ void GasSolver::transport_conservatively(double dt) {
   }
   for_each_cell("cip.transport.energy", 0, g.nx, 0, g.ny,
                 EnergyUpdateKernel{v.now, active, rho_e, Du, Dv, ledgers.positivity_heat, g.nx, g.ny, px, py,
-                                   mat, m});
+                                   mat, m, E1});
 }
 
 }  // namespace blastsim::cip

@@ -40,7 +40,10 @@ namespace blastsim::cip::detail {
   X(double, alpha_flux_x, "volume-fraction flux w alpha^ through x-faces [m/s]")                   \
   X(double, alpha_flux_y, "volume-fraction flux through y-faces [m/s]")                            \
   X(double, volume_flux_x, "face velocity of open x-faces, 0 on closed ones [m/s]")                \
-  X(double, volume_flux_y, "face velocity of open y-faces [m/s]")
+  X(double, volume_flux_y, "face velocity of open y-faces [m/s]")                                 \
+  X(double, products_energy_flux_x, "products' internal-energy flux through x-faces [W/m2]")        \
+  X(double, products_energy_flux_y, "products' internal-energy flux through y-faces [W/m2]")        \
+  X(double, products_energy, "products' internal energy per unit volume after the transport [J/m3]")
 
 BLASTSIM_FIELD_GROUP(GasWork, BLASTSIM_GAS_WORK)
 BLASTSIM_FIELD_GROUP(GasLedgers, BLASTSIM_GAS_LEDGERS)

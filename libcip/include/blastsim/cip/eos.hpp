@@ -145,6 +145,11 @@ struct GasMaterials {
   //! transport smears alpha ahead of an interface down to denormal numbers, where m1 / alpha is no density.
   //! Their products mass is still carried.
   static constexpr double kMinFraction = 1e-10;
+  //! Relative pressure difference of a mixed cell's materials below which relaxed_fraction() leaves alpha.
+  static constexpr double kRelaxTolerance = 1e-9;
+  //! Volume fractions (of either material) below which relaxed_fraction() leaves alpha: there the transported
+  //! energy of the scarce material is round-off of its neighbours' and gives it no pressure of its own.
+  static constexpr double kRelaxMinFraction = 1e-6;
 
   //! alpha_k K_k(rho_k) [J/m3] from the volume fraction and the partial density m_k = alpha_k rho_k, written
   //! so that it stays bounded as alpha_k -> 0 (zero for an ideal gas).
@@ -214,6 +219,59 @@ struct GasMaterials {
     const double a2 = 1.0 - alpha;
     return alpha * p / products.gruneisen() + a2 * p / air.gruneisen() + offset(products, alpha, alpha * rho1) +
            offset(air, a2, a2 * rho2);
+  }
+  //! The products' share alpha rho1 e1 [J/m3] of energy_density(): their internal energy per unit mixture volume
+  //! at pressure p, volume fraction alpha and partial density m1 = alpha rho1.
+  BLAST_HD double products_energy(double p, double alpha, double m1) const {
+    return alpha * p / products.gruneisen() + offset(products, alpha, m1);
+  }
+
+  //! Pressure [Pa] of material k (products or air) holding partial density m_k and internal energy E_k
+  //! [J/m3, per unit mixture volume] at volume fraction a_k after it has done the work P (a_k - a0_k) against
+  //! the other material at their common pressure P: solving
+  //!   a_k P = Gamma_k (E_k - P (a_k - a0_k) - a_k K_k(m_k / a_k))    for P
+  //! gives P = num / den with num = Gamma_k (E_k - alpha_k K_k), den = a_k (1 + Gamma_k) - Gamma_k a0_k. Returned as
+  //! the pair so that the caller can compare pressures without dividing by a vanishing den.
+  struct RelaxedPressure {
+    double num, den;
+  };
+  BLAST_HD static RelaxedPressure relaxed_pressure(const EquationOfState& eos, double a_k, double a0_k, double m_k,
+                                                   double E_k) {
+    const double G = eos.gruneisen();
+    return {G * (E_k - offset(eos, a_k, m_k)), a_k * (1.0 + G) - G * a0_k};
+  }
+
+  //! Instantaneous pressure relaxation of a mixed cell (Saurel, Petitpas & Berry, JCP 228 (2009) 1678, sec. 3,
+  //! with Mie-Gruneisen materials): the products (partial density m1, internal energy E1 per unit volume) and
+  //! the air (m2, E2) at volume fraction a0 = alpha need not share a pressure after the transport mixed states
+  //! from different cells into one. The volume fraction moves to the a at which both reach one pressure P, each
+  //! material's energy changed by the work P (a_k - a0_k) it does on the other (an isentropic exchange to first
+  //! order; masses and the total energy E1 + E2 are untouched, so the mixture pressure of the result is P).
+  //! On (a_lo, a_hi), where both denominators of relaxed_pressure() are positive, P1 - P2 runs from +inf to
+  //! -inf when both numerators are positive: bisection on the sign of num1 den2 - num2 den1 to round-off.
+  //! Returns a0 when a material's thermal energy is not positive (no bracket), when the pressures already agree
+  //! to kRelaxTolerance, and in cells where either fraction is below kRelaxMinFraction.
+  BLAST_HD double relaxed_fraction(double a0, double m1, double m2, double E1, double E2) const {
+    if (!(a0 > kRelaxMinFraction && a0 < 1.0 - kRelaxMinFraction)) return a0;
+    const double G1 = products.gruneisen(), G2 = air.gruneisen();
+    double lo = G1 * a0 / (1.0 + G1), hi = 1.0 - G2 * (1.0 - a0) / (1.0 + G2);
+    auto excess = [&](double a) {  // sign of P1(a) - P2(a) while both den > 0
+      const RelaxedPressure p1 = relaxed_pressure(products, a, a0, m1, E1);
+      const RelaxedPressure p2 = relaxed_pressure(air, 1.0 - a, 1.0 - a0, m2, E2);
+      return p1.num * p2.den - p2.num * p1.den;
+    };
+    // Phases that already share a pressure to kRelaxTolerance keep their alpha: otherwise round-off in the
+    // transported energies would move alpha every step (at a density ratio r a move d alpha changes the
+    // mixture density by about r d alpha).
+    const RelaxedPressure q1 = relaxed_pressure(products, a0, a0, m1, E1), q2 = relaxed_pressure(air, 1.0 - a0, 1.0 - a0, m2, E2);
+    const double p1 = q1.num / q1.den, p2 = q2.num / q2.den;
+    if (fabs(p1 - p2) <= kRelaxTolerance * (fabs(p1) + fabs(p2))) return a0;
+    if (!(excess(lo) > 0.0) || !(excess(hi) < 0.0)) return a0;
+    for (int it = 0; it < 64 && hi - lo > 4e-16 * hi; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (excess(mid) > 0.0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
   }
 };
 

@@ -118,9 +118,9 @@ BLAST_HD inline double swept_mc(double q_back, double q_up, double q_across, dou
 }
 
 //! What crosses a face in a two-material run, per unit face velocity: mixture density, products partial
-//! density, internal energy per volume and the products volume fraction.
+//! density, internal energy per volume, the products volume fraction and the products' share of rho e.
 struct MixtureFaceValues {
-  double rho, m1, rho_e, alpha;
+  double rho, m1, rho_e, alpha, rho_e1;
 };
 
 //! One cell's state as the two-material reconstruction sees it.
@@ -167,13 +167,15 @@ BLAST_HD inline MixtureFaceValues mixture_face_values(const GasMaterials& mat, c
   v.m1 = a_f * r1_f;
   v.rho = v.m1 + (1.0 - a_f) * r2_f;
   v.rho_e = mat.energy_density(p_f, a_f, r1_f, r2_f);
+  v.rho_e1 = mat.products_energy(p_f, a_f, v.m1);
   return v;
 }
 
 //! Mass and internal-energy fluxes [kg/(m2 s), J/(m2 s)] through x-faces (axis 0) or y-faces (axis 1).
 //! Faces beside an inactive cell are closed. In a two-material run, faces with products among the four
 //! cells along their normal take mixture_face_values() and also give the products mass flux, the volume
-//! fraction flux w alpha^ and the open-face velocity (for the alpha equation); elsewhere those are zero. In a
+//! fraction flux w alpha^, the open-face velocity (for the alpha equation) and the products' internal-energy flux
+//! (for the pressure relaxation, GasMaterials::relaxed_fraction()); elsewhere those are zero. In a
 //! one-gas run with a tracer the traced gas's flux is the mass flux times the upwind cell's traced mass
 //! fraction m1 / rho (first-order upwind: the fraction stays in [0, 1] wherever the mass does not empty a cell
 //! in one step; docs/gas-solver.md "Tracer").
@@ -187,12 +189,14 @@ struct MassFluxKernel {
   GasMaterials mat;
   MaterialReadView materials;                      // read in two-material runs only
   Field2D<double> products_flux, alpha_flux, volume_flux;  // written in runs with products or a tracer only
+  Field2D<double> products_energy_flux;                    // written in runs with products only
   BLAST_HD void operator()(int i, int j) const {
     const int im = axis == 0 ? i - 1 : i, jm = axis == 0 ? j : j - 1;
     if (!active(im, jm) || !active(i, j)) {
       mass_flux(i, j) = 0.0;
       energy_flux(i, j) = 0.0;
       if (mat.traced()) products_flux(i, j) = alpha_flux(i, j) = volume_flux(i, j) = 0.0;
+      if (mat.two) products_energy_flux(i, j) = 0.0;
       return;
     }
     if (mat.two) {
@@ -212,9 +216,10 @@ struct MassFluxKernel {
         energy_flux(i, j) = w * v.rho_e;
         products_flux(i, j) = w * v.m1;
         alpha_flux(i, j) = w * v.alpha;
+        products_energy_flux(i, j) = w * v.rho_e1;
         return;
       }
-      products_flux(i, j) = alpha_flux(i, j) = 0.0;
+      products_flux(i, j) = alpha_flux(i, j) = products_energy_flux(i, j) = 0.0;
     }
     const double w = axis == 0 ? s.u.f(i, j) : s.v.f(i, j);
     const Field2D<const double> t = axis == 0 ? s.v.f : s.u.f;  // transverse velocity, averaged to the face
@@ -327,8 +332,10 @@ struct DonorCellFluxKernel {
 
 //! Cell update of mass and internal energy from the face fluxes; in a two-material run also the products'
 //! partial density (flux form, conserved) and volume fraction: alpha_t + u . grad(alpha) = 0 as
-//! alpha - dt (div(u alpha^) - alpha div(u)) with the same face values (alpha kept in [0, 1] against round-off);
-//! with a tracer the traced gas's partial density (flux form).
+//! alpha - dt (div(u alpha^) - alpha div(u)) with the same face values (alpha kept in [0, 1] against round-off),
+//! and the products' internal energy per unit volume (flux form from the cell's equilibrium share at the start,
+//! GasMaterials::products_energy(); read by the pressure relaxation in EnergyUpdateKernel); with a tracer the
+//! traced gas's partial density (flux form).
 struct CellFluxUpdateKernel {
   GasStateReadView s;
   GasStateView n;
@@ -339,6 +346,9 @@ struct CellFluxUpdateKernel {
   bool two, traced;                           // GasMaterials::two, GasMaterials::traced()
   MaterialView materials;                     // updated in place (runs with products or a tracer)
   Field2D<const double> Mx, My, Ax, Ay, Wx, Wy;  // products, alpha and volume fluxes
+  GasMaterials mat;                              // read in two-material runs only
+  Field2D<const double> Px, Py;                  // products' internal-energy fluxes (two-material runs)
+  Field2D<double> products_energy;               // [J/m3] written in two-material runs
   BLAST_HD void operator()(int i, int j) const {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     if (!active(i, j)) {
@@ -349,9 +359,12 @@ struct CellFluxUpdateKernel {
     n.rho.f(i, j) = rho - dt * flux_divergence(Fx, Fy, i, j, dx, dy);
     rho_e(i, j) = rho * e - dt * flux_divergence(Ex, Ey, i, j, dx, dy);
     if (!traced) return;
-    materials.m1(i, j) -= dt * ((Mx(i + 1, j) - Mx(i, j)) / dx + (My(i, j + 1) - My(i, j)) / dy);
+    const double m1 = materials.m1(i, j);
+    materials.m1(i, j) = m1 - dt * ((Mx(i + 1, j) - Mx(i, j)) / dx + (My(i, j + 1) - My(i, j)) / dy);
     if (!two) return;
     const double a = materials.alpha(i, j);
+    const double E1 = a > GasMaterials::kMinFraction ? mat.products_energy(mat.pressure(rho, e, a, m1), a, m1) : 0.0;
+    products_energy(i, j) = E1 - dt * flux_divergence(Px, Py, i, j, dx, dy);
     const double div_a = (Ax(i + 1, j) - Ax(i, j)) / dx + (Ay(i, j + 1) - Ay(i, j)) / dy;
     const double div_u = (Wx(i + 1, j) - Wx(i, j)) / dx + (Wy(i, j + 1) - Wy(i, j)) / dy;
     const double a_new = a - dt * (div_a - a * div_u);
@@ -531,6 +544,9 @@ inline constexpr double kMaxCorrectionFraction = 0.5;
 //! rho e - sum_k alpha_k K_k(rho_k) = p xi >= 0 (GasMaterials: the energy above the materials' zero-pressure
 //! curves; rho e itself for air), so the correction never drives the pressure negative; the part not taken is
 //! summed in `added` [J/m3] (GasSolver::positivity_energy()).
+//! In a two-material run a mixed cell then relaxes to one pressure (GasMaterials::relaxed_fraction()): the
+//! products hold the internal energy the transport gave them (CellFluxUpdateKernel) plus their equilibrium share
+//! alpha / (Gamma1 xi) of this kernel's change to rho e, the air the rest; only alpha changes.
 struct EnergyUpdateKernel {
   GasStateView n;
   Field2D<const std::uint8_t> active;
@@ -539,7 +555,8 @@ struct EnergyUpdateKernel {
   int nx, ny;
   bool periodic_x, periodic_y;
   GasMaterials mat;
-  MaterialReadView m;  // read when mat.two (alpha and m1 after this step's transport)
+  MaterialView m;  // read when mat.two (alpha and m1 after this step's transport); alpha relaxed in place
+  Field2D<const double> products_energy;  // [J/m3] after the transport (two-material runs)
   BLAST_HD void operator()(int i, int j) const {
     if (!active(i, j)) {
       n.e.f(i, j) = rho_e(i, j) / n.rho.f(i, j);
@@ -565,6 +582,11 @@ struct EnergyUpdateKernel {
       const double xi = m.alpha(i, j) / mat.products.gruneisen() + (1.0 - m.alpha(i, j)) / mat.air.gruneisen();
       const double lack = xi * kPressureFloor - (energy - offsets);
       if (lack > 0.0) added(i, j) += lack, energy += lack;
+      const double a = m.alpha(i, j), m1 = m.m1(i, j), m2 = n.rho.f(i, j) - m1;
+      if (a < 1.0 - GasMaterials::kMinFraction && m1 > 0.0 && m2 > 0.0) {
+        const double E1 = products_energy(i, j) + a / (mat.products.gruneisen() * xi) * (energy - rho_e(i, j));
+        m.alpha(i, j) = mat.relaxed_fraction(a, m1, m2, E1, energy - E1);
+      }
     }
     n.e.f(i, j) = energy / n.rho.f(i, j);
   }
