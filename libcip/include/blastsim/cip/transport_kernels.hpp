@@ -583,7 +583,7 @@ struct EnergyUpdateKernel {
       const double lack = xi * kPressureFloor - (energy - offsets);
       if (lack > 0.0) added(i, j) += lack, energy += lack;
       const double a = m.alpha(i, j), m1 = m.m1(i, j), m2 = n.rho.f(i, j) - m1;
-      if (a < 1.0 - GasMaterials::kMinFraction && m1 > 0.0 && m2 > 0.0) {
+      if (m1 > 0.0 && m2 > 0.0) {  // relaxed_fraction() leaves nearly pure cells alone
         const double E1 = products_energy(i, j) + a / (mat.products.gruneisen() * xi) * (energy - rho_e(i, j));
         m.alpha(i, j) = mat.relaxed_fraction(a, m1, m2, E1, energy - E1);
       }
