@@ -129,8 +129,15 @@ int main(int argc, char** argv) {
         {"coupling masks", {"ibm.cover", "ibm.cells", "ibm.clear_owner"}, 0, cells * (2 * 4 + 1) + tri * 6 * 8},
         {"coupling velocities", {"ibm.face_velocity"}, 0, cells * 2 * (8 + 1 + 4)},
         {"coupling pressures", {"ibm.edge_pressure"}, 0, 3 * tri * (8 + 8 + 1)},
-        // face forces: per triangle its node loads, and the owners, pressures and masks of the faces it covers
-        {"coupling face forces", {"ibm.face_load"}, 0, load == ibm::GasLoad::face_forces ? 3 * tri * 16 + cells * 2 * (4 + 8 + 1) : 0},
+        // face forces: per triangle its node loads, and the owners, pressures and masks of the faces it covers;
+        // the work over the step: the face velocities kept (copied) and the nodes kept, then per cell its two
+        // owners, face velocities kept and imposed, P, rho, e (read and written) and mask (the records of the
+        // loaded faces, a band along the rock's surface, left out)
+        {"coupling face forces", {"ibm.face_load", "ibm.face_work"}, 0,
+         load == ibm::GasLoad::face_forces
+             ? 3 * tri * 16 + cells * 2 * (4 + 8 + 1) + cells * 2 * 16 + nodes * 4 * 16 +
+                   cells * (2 * 4 + 2 * 8 + 2 * 8 + 8 + 8 + 16 + 1)
+             : 0},
     };
     double other = 0, total = 0;
     for (const auto& [label, e] : prof.entries()) {

@@ -105,6 +105,10 @@ void GasRockCoupler::step(double dt, int rock_substeps) {
       for (CouplingProcess* p : within) p->before_rock_step(c, k);
     });
   }
+  {
+    CouplingContext c = context();
+    for (auto& p : processes_) p->after_rock(c, dt, rock_substeps);
+  }
   fire_due();  // before the next step chooses its dt: the products' sound speed must set it
   const cip::GasGrid& g = gas_.grid();
   const index_t cells = static_cast<index_t>(g.nx) * g.ny;

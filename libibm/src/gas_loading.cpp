@@ -7,8 +7,29 @@
 #include "blastsim/ibm/gas_load_kernels.hpp"
 
 #include <string>
+#include <utility>
 
 namespace blastsim::ibm {
+
+namespace detail {
+struct FaceWorkArrays {
+  DeviceVector<double> u_old, v_old;                  // padded shape
+  DeviceVector<FaceLoadRecord> record_u, record_v;     // padded shape, marked with the load that wrote them
+  DeviceVector<double> x0, y0, vx0, vy0;              // per rock node
+};
+}  // namespace detail
+
+namespace {
+//! Copies one padded field into another (the face velocities a gas step starts from).
+struct CopyValues {
+  const double* from;
+  double* to;
+  BLAST_HD void operator()(index_t k) const { to[k] = from[k]; }
+};
+}  // namespace
+
+GasLoading::GasLoading(GasLoad load) : load_(load), a_(std::make_unique<detail::FaceWorkArrays>()) {}
+GasLoading::~GasLoading() = default;
 
 const char* gas_load_name(GasLoad load) { return load == GasLoad::face_forces ? "faces" : "edges"; }
 
@@ -28,10 +49,57 @@ void GasLoading::load_rock(CouplingContext& ctx) {
                                     ctx.ambient_pressure, faces});
   if (!faces) return;
   const PaddedShape sh = g.padded_shape();
+  detail::FaceWorkArrays& a = *a_;
+  if (a.record_u.size() != static_cast<size_t>(sh.size())) {  // once: every record marked as no load's
+    const FaceLoadRecord none{{{0.0, 0.0, 0.0}, 0.0, 0.0}, -1.0};
+    a.record_u.assign(sh.size(), none);
+    a.record_v.assign(sh.size(), none);
+  }
+  const double stamp = static_cast<double>(ctx.gas.steps());
   for_each_index("ibm.face_load", static_cast<index_t>(rock.triangle_count),
                  FaceLoadKernel{rock, g, mat, ctx.gas.material_fields(), ib.cell_active, s.rho.f, s.e.f,
                                 ctx.owners, Field2D<const double>{ctx.gas.pressure_with_viscosity().data, sh},
-                                ctx.gas.steps() > 0, ctx.owner_margin});
+                                ctx.gas.steps() > 0, ctx.owner_margin, make_field_view(a.record_u, sh),
+                                make_field_view(a.record_v, sh), stamp});
+  // The rock's nodes before its substeps, for the work over the step (after_rock()); only after a gas step,
+  // whose P the loads used and whose energy equation counted the faces' velocities.
+  loaded_ = started_ && ctx.gas.steps() > 0;
+  if (!loaded_) return;
+  const index_t nodes = 3 * static_cast<index_t>(rock.triangle_count);
+  for (auto [from, to] : {std::pair{rock.nodes.x, &a.x0}, std::pair{rock.nodes.y, &a.y0},
+                          std::pair{rock.nodes.vx, &a.vx0}, std::pair{rock.nodes.vy, &a.vy0}}) {
+    to->resize(nodes);
+    for_each_index("ibm.face_work.nodes", nodes, CopyValues{from, device_ptr(*to)});
+  }
+  dt_prev_ = ctx.rock.previous_dt();
+  stamp_ = stamp;
+}
+
+void GasLoading::before_gas(CouplingContext& ctx, double) {
+  if (load_ != GasLoad::face_forces) return;
+  const cip::GasStateView s = ctx.gas.state();
+  const index_t n = ctx.gas.grid().padded_shape().size();
+  a_->u_old.resize(n), a_->v_old.resize(n);
+  for_each_index("ibm.face_work.u_old", n, CopyValues{s.u.f.data, device_ptr(a_->u_old)});
+  for_each_index("ibm.face_work.v_old", n, CopyValues{s.v.f.data, device_ptr(a_->v_old)});
+  started_ = true;
+}
+
+void GasLoading::after_rock(CouplingContext& ctx, double dt, int rock_substeps) {
+  if (load_ != GasLoad::face_forces || !loaded_) return;
+  loaded_ = started_ = false;
+  const cip::GasGrid g = ctx.gas.grid();
+  const PaddedShape sh = g.padded_shape();
+  const detail::FaceWorkArrays& a = *a_;
+  const cip::GasStateView s = ctx.gas.state();
+  const cip::ImmersedBoundaryView ib = ctx.gas.immersed_boundary();
+  for_each_cell("ibm.face_work", 0, g.nx, 0, g.ny,
+                FaceWorkLagKernel{ctx.rock.view(), device_ptr(a.x0), device_ptr(a.y0), device_ptr(a.vx0),
+                                  device_ptr(a.vy0), dt, dt / rock_substeps, dt_prev_, g, ctx.owners.u, ctx.owners.v,
+                                  make_field_view(a.record_u, sh), make_field_view(a.record_v, sh), stamp_,
+                                  make_field_view(a.u_old, sh), make_field_view(a.v_old, sh), ib.u_imposed,
+                                  ib.v_imposed, Field2D<const double>{ctx.gas.pressure_with_viscosity().data, sh},
+                                  ib.cell_active, s.rho.f, s.e.f});
 }
 
 void GasLoading::add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const {

@@ -49,6 +49,9 @@ class RockSolver {
   //! by 4 c_p^2 / h^2 (h its smallest altitude) + 6 sqrt(2) p / (rho A) (joint penalty p) + 36 p_c / (rho h^2)
   //! (contact penalty p_c, when contact is on), reduced for damping by sqrt(1 + beta^2) - beta.
   double stable_dt() const { return stable_dt_; }
+  //! The length of the last step taken [s] (0 before the first): the node ledger's trapezoid weighs the velocity
+  //! at the start of the next step with it (docs/fdem-solver.md, "Energies").
+  double previous_dt() const { return dt_prev_; }
 
   //! Advances by dt [s]. Throws InputError if dt > stable_dt(), InstabilityError on a non-finite state.
   //! One step = triangle_forces(), joint_forces(), contact_forces(), update_nodes(), then the speed check:

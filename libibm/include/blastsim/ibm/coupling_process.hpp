@@ -87,6 +87,8 @@ class CouplingProcess {
   virtual bool updates_rock_steps() const { return false; }
   //! Before rock substep k >= 1 of a coupled step (load_rock() set the loads of substep 0).
   virtual void before_rock_step(CouplingContext& /*ctx*/, int /*k*/) {}
+  //! After the rock's `rock_substeps` steps that fill the coupled step of dt [s].
+  virtual void after_rock(CouplingContext& /*ctx*/, double /*dt*/, int /*rock_substeps*/) {}
 
   // --- events ---
   //! True when the process needs a rock_to_gas() at gas time t [s] before the next dt is chosen (a charge

@@ -62,6 +62,13 @@ struct EdgePressureKernel {
   }
 };
 
+//! The coupling a face point's force was put on the rock with (FaceLoadKernel), marked with the load it belongs
+//! to, so that a face not loaded by the step's load is told apart without clearing the records.
+struct FaceLoadRecord {
+  FacePointCoupling c;
+  double stamp;
+};
+
 //! GasLoad::face_forces (docs/coupling.md "Face forces"): the force the grid gas puts on the rock is the one its
 //! own momentum equation applied at the prescribed faces. Per triangle t, every face point of its bounding box
 //! that t covers (owner == t) carries A (P_low - P_high) along its axis, P = p + q of the gas's last step in the
@@ -80,6 +87,8 @@ struct FaceLoadKernel {
   Field2D<const double> P;  // p + q of the last step [Pa]
   bool use_step_pressure;
   double owner_margin;  // [m] how far outside a triangle with a crack face its face points may lie (crack gaps)
+  Field2D<FaceLoadRecord> record_u, record_v;  // per face point it loads: the coupling used (FaceWorkLagKernel)
+  double stamp;  // this load's mark in the records (the gas's step count)
   BLAST_HD double pressure(int i, int j) const {
     return use_step_pressure ? P(i, j) : cip::cell_pressure(mat, materials, rho(i, j), e(i, j), i, j);
   }
@@ -105,6 +114,7 @@ struct FaceLoadKernel {
           F *= face == 0 ? g.dy : g.dx;
           const FacePointCoupling c =
               face_point_coupling(rock, t, x, y, g.x_min + (i + ox) * g.dx, g.y_min + (j + oy) * g.dy, face, true);
+          (face == 0 ? record_u : record_v)(i, j) = FaceLoadRecord{c, stamp};
           if (c.nx != 0.0 || c.ny != 0.0) {  // along the surface normal
             const double Fn = F * (face == 0 ? c.nx : c.ny);
             for (int k = 0; k < 3; ++k) fx[k] += c.w[k] * Fn * c.nx, fy[k] += c.w[k] * Fn * c.ny;
@@ -116,6 +126,53 @@ struct FaceLoadKernel {
         }
     }
     for (int k = 0; k < 3; ++k) rock.loads.node_load[3 * t + k] = {fx[k], fy[k]};
+  }
+};
+
+//! The face forces' work over a coupled step (docs/coupling.md "Face forces", "Work over a step"). At a
+//! prescribed face the gas's energy equation pays A P (u_old + u_imposed) / 2 dt on each side (u_old: the face's
+//! velocity at the step's start, the imposed velocity of the step before), while the rock receives the face's
+//! force A (P_low - P_high) times the motion of the surface point over its substeps as its ledger counts it (the
+//! trapezoid rule: for every node 0.5 v_0 dt_prev + (x_end - x_0) - 0.5 v_end dt_sub). Where the rock accelerates
+//! (the first microseconds of a charge) the two differ at first order in dt. Each active cell pays its share of
+//! the difference: P A lag, lost at a face on its high side, gained at one on its low side, so that the gas gives
+//! exactly the work the rock received. A gather per cell (each face's lag computed by both its cells alike).
+struct FaceWorkLagKernel {
+  fdem::RockView rock;  // after the substeps
+  const double *x0, *y0, *vx0, *vy0;  // each node at the start of the step [m], [m/s]
+  double dt, dt_sub, dt_prev;  // the coupled step, the rock's substep, its step before this coupled step [s]
+  cip::GasGrid g;
+  Field2D<const int> owner_u, owner_v;
+  Field2D<const FaceLoadRecord> record_u, record_v;
+  double stamp;  // the step's load
+  Field2D<const double> u_old, v_old, u_imposed, v_imposed;
+  Field2D<const double> P;  // p + q of the step [Pa]
+  Field2D<const std::uint8_t> active;
+  Field2D<const double> rho;
+  Field2D<double> e;  // [J/kg]
+  //! How far face (i, j) of `axis` moved along +axis over the step as the rock counts it, beyond what the gas
+  //! paid for [m]; 0 where the rock took no force from it.
+  BLAST_HD double lag(int axis, int i, int j) const {
+    const int t = (axis == 0 ? owner_u : owner_v)(i, j);
+    if (t < 0) return 0.0;
+    const FaceLoadRecord r = (axis == 0 ? record_u : record_v)(i, j);
+    if (r.stamp != stamp) return 0.0;  // not loaded in this step (no active cell beside it pushed)
+    const FacePointCoupling& c = r.c;
+    double d = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const int n = 3 * t + k;
+      const double mx = rock.nodes.x[n] - x0[n] + 0.5 * (vx0[n] * dt_prev - rock.nodes.vx[n] * dt_sub);
+      const double my = rock.nodes.y[n] - y0[n] + 0.5 * (vy0[n] * dt_prev - rock.nodes.vy[n] * dt_sub);
+      if (c.nx == 0.0 && c.ny == 0.0) d += c.w[k] * (axis == 0 ? mx : my);
+      else d += c.w[k] * (axis == 0 ? c.nx : c.ny) * (c.nx * mx + c.ny * my);
+    }
+    const double paid = 0.5 * ((axis == 0 ? u_old : v_old)(i, j) + (axis == 0 ? u_imposed : v_imposed)(i, j)) * dt;
+    return d - paid;
+  }
+  BLAST_HD void operator()(int i, int j) const {
+    if (!active(i, j)) return;
+    const double dV = (lag(0, i, j) - lag(0, i + 1, j)) * g.dy + (lag(1, i, j) - lag(1, i, j + 1)) * g.dx;  // [m2]
+    if (dV != 0.0) e(i, j) += P(i, j) * dV / (g.dx * g.dy * rho(i, j));
   }
 };
 

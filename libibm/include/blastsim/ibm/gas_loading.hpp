@@ -6,6 +6,8 @@
 #include "blastsim/ibm/coupling_process.hpp"
 #include "blastsim/ibm/immersed_boundary.hpp"
 
+#include <memory>
+
 namespace blastsim::ibm {
 
 //! How the grid gas loads the rock (docs/coupling.md "Gas -> rock"). Crack faces with their own gas (crack gas)
@@ -25,9 +27,14 @@ FacePointRule face_point_rule(GasLoad load);
 
 //! A coupling process (coupling_process.hpp): the edge pressures [Pa] on every exposed edge (edge_pressures),
 //! or the face forces [N/m] on the nodes with all edge pressures 0 (face_forces), for the rock's next steps.
+namespace detail {
+struct FaceWorkArrays;
+}
+
 class GasLoading : public CouplingProcess {
  public:
-  explicit GasLoading(GasLoad load) : load_(load) {}
+  explicit GasLoading(GasLoad load);
+  ~GasLoading() override;
   const char* name() const override { return "gas load"; }
   GasLoad load() const { return load_; }
 
@@ -36,6 +43,11 @@ class GasLoading : public CouplingProcess {
   //! a crack face the ambient pressure. GasLoad::face_forces: forces on the nodes from the prescribed faces
   //! (FaceLoadKernel), edge pressures 0.
   void load_rock(CouplingContext& ctx) override;
+  //! GasLoad::face_forces: keeps the face velocities the gas step starts from (the energy equation's).
+  void before_gas(CouplingContext& ctx, double dt) override;
+  //! GasLoad::face_forces: the gas pays the work the rock received from the face forces over the step, which
+  //! its energy equation counted at the faces' velocities instead of the rock's motion (FaceWorkLagKernel).
+  void after_rock(CouplingContext& ctx, double dt, int rock_substeps) override;
   //! The force of the gas on the rock (a device reduction) and its cumulative work (the rock's ledger).
   void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
   //! The checkpoint records the load; read_checkpoint() refuses another.
@@ -44,6 +56,13 @@ class GasLoading : public CouplingProcess {
 
  private:
   GasLoad load_;
+  // GasLoad::face_forces, within one coupled step (nothing to checkpoint): the gas's face velocities at the
+  // step's start, the coupling of each face point loaded, the rock's nodes at the load (gas_loading.cpp)
+  std::unique_ptr<detail::FaceWorkArrays> a_;
+  double dt_prev_ = 0;   // [s] the rock's last step at the load
+  double stamp_ = -1;    // the load's mark in the face records (the gas's step count then)
+  bool started_ = false;  // before_gas() of this step ran (u_old, v_old set)
+  bool loaded_ = false;   // load_rock() of this step ran after a gas step (the records and nodes set)
 };
 
 }  // namespace blastsim::ibm
