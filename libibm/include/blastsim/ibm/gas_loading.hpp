@@ -25,12 +25,12 @@ const char* gas_load_name(GasLoad load);
 //! The face-point rule that goes with a load: face forces need the faces to move with the surface they load.
 FacePointRule face_point_rule(GasLoad load);
 
-//! A coupling process (coupling_process.hpp): the edge pressures [Pa] on every exposed edge (edge_pressures),
-//! or the face forces [N/m] on the nodes with all edge pressures 0 (face_forces), for the rock's next steps.
 namespace detail {
 struct FaceWorkArrays;
 }
 
+//! A coupling process (coupling_process.hpp): the edge pressures [Pa] on every exposed edge (edge_pressures),
+//! or the face forces [N/m] on the nodes with all edge pressures 0 (face_forces), for the rock's next steps.
 class GasLoading : public CouplingProcess {
  public:
   explicit GasLoading(GasLoad load);
