@@ -6,6 +6,7 @@
 #include "catch.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 using namespace blastsim;
@@ -111,4 +112,46 @@ TEST_CASE("Gas kernels: the swept value of a linear profile is its value at the 
   const double wdt = 0.3;  // |w| dt [m]
   CHECK_THAT(swept_mc(1.0, 2.0, 3.0, 3.0, 0.1, 1.0), Catch::Matchers::WithinAbs(2.5 - 0.5 * wdt, 1e-15));
   CHECK_THAT(swept_mc(3.0, 2.0, 1.0, -3.0, 0.1, 1.0), Catch::Matchers::WithinAbs(1.5 + 0.5 * wdt, 1e-15));
+}
+
+TEST_CASE("Gas kernels: a face's kinetic-energy correction heats the cells on its two sides alike per kilogram",
+          "[cip][kernels][transport]") {
+  // The correction D [J/m3] of an interior face is the kinetic energy its dual cell (half of each neighbour)
+  // lost in the momentum transport; shared by mass, both cells gain D / (rho_a + rho_b) [J/kg] and together D.
+  // A face on a wall or beside an inactive cell gives all of its correction to the one gas cell.
+  HostState s(4);
+  const EquationOfState eos = EquationOfState::ideal(1.4);
+  GasMaterials one;
+  one.air = eos;
+  const double rho[4] = {1.2, 4.0e-3, 1.2, 30.0}, e0 = 2.0e5;  // a near-vacuum cell between two dense ones
+  for (int j = -s.shape.ghost; j < s.shape.nj + s.shape.ghost; ++j)
+    for (int i = -s.shape.ghost; i < s.shape.ni + s.shape.ghost; ++i) {
+      s.field(0)(i, j) = i >= 0 && i < 4 ? rho[i] : 1.0;
+      s.field(3)(i, j) = e0;
+    }
+  std::vector<double> rho_e(s.shape.size()), Du(s.shape.size(), 0.0), Dv(s.shape.size(), 0.0), added(s.shape.size(), 0.0);
+  std::vector<std::uint8_t> active(s.shape.size(), 1);
+  const Field2D<double> RE{rho_e.data(), s.shape}, DU{Du.data(), s.shape}, DV{Dv.data(), s.shape};
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) RE(i, j) = s.field(0)(i, j) * e0;
+  const int j = 1;
+  const double D1 = 300.0, D2 = 120.0, D0 = 50.0;  // faces x = 1 (cells 0|1), x = 2 (cells 1|2), x = 0 (wall|0)
+  DU(1, j) = D1, DU(2, j) = D2, DU(0, j) = D0;
+  const EnergyUpdateKernel k{s.view(), Field2D<const std::uint8_t>{active.data(), s.shape}, RE, DU, DV,
+                             Field2D<double>{added.data(), s.shape}, 4, 4, false, false, one, MaterialView{},
+                             Field2D<const double>{}};
+  for (int i = 0; i < 3; ++i) k(i, j);
+  const double de0 = s.field(3)(0, j) - e0, de1 = s.field(3)(1, j) - e0, de2 = s.field(3)(2, j) - e0;
+  const double per_kg_1 = D1 / (rho[0] + rho[1]), per_kg_2 = D2 / (rho[1] + rho[2]);
+  std::printf("Kinetic-energy heat: cells 1.2 | 0.004 | 1.2 kg/m3, faces 300 and 120 J/m3: de = %.6g, %.6g, %.6g "
+              "J/kg (by mass %.6g + %.6g wall, %.6g + %.6g, %.6g)\n",
+              de0, de1, de2, per_kg_1, D0 / rho[0], per_kg_1, per_kg_2, per_kg_2);
+  CHECK_THAT(de0, Catch::Matchers::WithinRel(per_kg_1 + D0 / rho[0], 1e-12));
+  CHECK_THAT(de1, Catch::Matchers::WithinRel(per_kg_1 + per_kg_2, 1e-12));
+  CHECK_THAT(de2, Catch::Matchers::WithinRel(per_kg_2, 1e-12));
+  // Conserved: the three cells' rho e together gain the three faces' corrections (face x = 3 carries none).
+  const double gained = rho[0] * de0 + rho[1] * de1 + rho[2] * de2;
+  CHECK_THAT(gained, Catch::Matchers::WithinRel(D0 + D1 + D2, 1e-12));
+  CHECK(kinetic_heat_share(0.7, 0.7) == 0.5);  // equal densities: the halves, exactly
+  CHECK_THAT(kinetic_heat_share(rho[0], rho[1]) + kinetic_heat_share(rho[1], rho[0]), Catch::Matchers::WithinAbs(1.0, 1e-15));
 }

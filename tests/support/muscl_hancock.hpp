@@ -40,6 +40,11 @@ class MusclHancock {
 
   //! Cell-averaged density of cell i.
   double density(int i) const { return U_[i + 2][0]; }
+  //! Specific internal energy [J/kg] of cell i, from its conserved averages.
+  double internal_energy(int i) const {
+    const Primitive w = primitive(U_[i + 2]);
+    return w.p / ((g_ - 1) * w.rho);
+  }
 
  private:
   Conserved conserved(const Primitive& w) const {

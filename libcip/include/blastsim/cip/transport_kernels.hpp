@@ -538,9 +538,19 @@ inline constexpr double kPressureFloor = 1.0;
 //! negative energy; what exceeds this fraction is not taken but counted as energy added to the gas.
 inline constexpr double kMaxCorrectionFraction = 0.5;
 
-//! Internal energy of a cell: flux-form rho e plus half the kinetic energy dissipated on each of its four
-//! faces (all of it for a face on the outer boundary or next to an inactive cell: no gas cell on the other
-//! side takes the other half). A net loss is bounded by kMaxCorrectionFraction of the cell's thermal energy
+//! Share of a face's kinetic-energy correction [J/m3 of its dual cell] that the cell of density rho_self
+//! [kg/m3] beside the face takes, the cell across it holding rho_other: by mass, so that both cells gain the
+//! same heat per kilogram, D / (rho_self + rho_other) for a correction D (the dual cell's mass is half of
+//! each). The two shares of a face sum to one, so the correction is conserved; at equal densities each is
+//! exactly 0.5. An equal split by volume would give a near-vacuum cell beside a dense jet as much heat as its
+//! neighbour, and far more per kilogram (docs/gas-solver.md, "Troubled cells").
+BLAST_HD inline double kinetic_heat_share(double rho_self, double rho_other) {
+  return rho_self / (rho_self + rho_other);
+}
+
+//! Internal energy of a cell: flux-form rho e plus its share (kinetic_heat_share()) of the kinetic energy
+//! dissipated on each of its four faces (all of it for a face on the outer boundary or next to an inactive
+//! cell: no gas cell on the other side takes a share). A net loss is bounded by kMaxCorrectionFraction of the cell's thermal energy
 //! rho e - sum_k alpha_k K_k(rho_k) = p xi >= 0 (GasMaterials: the energy above the materials' zero-pressure
 //! curves; rho e itself for air), so the correction never drives the pressure negative; the part not taken is
 //! summed in `added` [J/m3] (GasSolver::positivity_energy()).
@@ -565,10 +575,11 @@ struct EnergyUpdateKernel {
     const int ir = periodic_x && i + 1 == nx ? 0 : i + 1;
     const int jt = periodic_y && j + 1 == ny ? 0 : j + 1;
     const int il = periodic_x && i == 0 ? nx - 1 : i - 1, jb = periodic_y && j == 0 ? ny - 1 : j - 1;
-    const double wl = (!periodic_x && i == 0) || !active(il, j) ? 1.0 : 0.5;
-    const double wr = (!periodic_x && i + 1 == nx) || !active(ir, j) ? 1.0 : 0.5;
-    const double wb = (!periodic_y && j == 0) || !active(i, jb) ? 1.0 : 0.5;
-    const double wt = (!periodic_y && j + 1 == ny) || !active(i, jt) ? 1.0 : 0.5;
+    const double r = n.rho.f(i, j);
+    const double wl = (!periodic_x && i == 0) || !active(il, j) ? 1.0 : kinetic_heat_share(r, n.rho.f(il, j));
+    const double wr = (!periodic_x && i + 1 == nx) || !active(ir, j) ? 1.0 : kinetic_heat_share(r, n.rho.f(ir, j));
+    const double wb = (!periodic_y && j == 0) || !active(i, jb) ? 1.0 : kinetic_heat_share(r, n.rho.f(i, jb));
+    const double wt = (!periodic_y && j + 1 == ny) || !active(i, jt) ? 1.0 : kinetic_heat_share(r, n.rho.f(i, jt));
     const double heat = wl * Du(i, j) + wr * Du(ir, j) + wb * Dv(i, j) + wt * Dv(i, jt);
     const bool mixed = mat.two && m.alpha(i, j) > GasMaterials::kMinFraction;
     const double offsets = mixed ? GasMaterials::offset(mat.products, m.alpha(i, j), m.m1(i, j)) +
