@@ -51,7 +51,7 @@ TEST_CASE("Bad charges give one clear error naming the key", "[app][charges][bad
   CHECK_THROWS_WITH(read_bench({"charge.0.initiation=\"point\"", "charge.0.initiation_point=[0.2, 0.2]"}),
                     Catch::Contains("charge.0.initiation_point") && Catch::Contains("outside the charge"));
   CHECK_THROWS_WITH(read_bench({"rock.mesh.shape=\"rectangle\""}), Catch::Contains("rectangle_with_holes"));
-  CHECK_THROWS_WITH(read_bench({"charge.0.radius=0.001"}), Catch::Contains("charge.0.radius") && Catch::Contains("half a gas cell"));
+  CHECK_THROWS_WITH(read_bench({"charge.0.radius=0.0005"}), Catch::Contains("charge.0.radius") && Catch::Contains("half a gas cell"));
   CHECK_THROWS_WITH(read_bench({"gas.transport=\"paper\""}), Catch::Contains("gas.transport"));
 }
 
