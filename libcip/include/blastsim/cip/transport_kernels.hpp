@@ -290,12 +290,22 @@ struct TroubledCellKernel {
       troubled(i, j) = 1;
       return;
     }
-    double lo = s.e.f(i, j), hi = lo;
+    // e outside its range over the block; then the density's discrete maximum principle, as MOOD checks it
+    // (Clain, Diot and Loubere 2011, sec. 3). Transport does compress, so a shock can leave the density's
+    // range and take donor-cell fluxes; what the density check catches is the contact that forms from a
+    // Riemann problem with a density bump beside it (docs/gas-solver.md "Troubled cells", test G16).
+    if (outside_block_range(s.e.f, E / rho, i, j) || outside_block_range(s.rho.f, rho, i, j)) troubled(i, j) = 1;
+  }
+  //! True when `candidate` lies outside the range of f over the active cells of the 3 x 3 block around (i, j),
+  //! widened by `relax` of the largest value.
+  template <class Field>
+  BLAST_HD bool outside_block_range(const Field& f, double candidate, int i, int j) const {
+    double lo = f(i, j), hi = lo;
     for (int b = -1; b <= 1; ++b)
       for (int a = -1; a <= 1; ++a)
-        if (active(i + a, j + b)) lo = min_of(lo, s.e.f(i + a, j + b)), hi = max_of(hi, s.e.f(i + a, j + b));
-    const double widen = relax * hi, e = E / rho;
-    if (e < lo - widen || e > hi + widen) troubled(i, j) = 1;
+        if (active(i + a, j + b)) lo = min_of(lo, f(i + a, j + b)), hi = max_of(hi, f(i + a, j + b));
+    const double widen = relax * hi;
+    return candidate < lo - widen || candidate > hi + widen;
   }
 };
 
