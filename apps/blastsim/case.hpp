@@ -35,7 +35,9 @@ struct GasSettings {
   double detonation_velocity = 0, detonation_energy = 0;
   bool charges = false;  //!< the case has [[charge]] tables (their products need the second material)
   cip::GasSolverOptions solver;
-  double courant = 0.1;  //!< [-] dt = courant / max signal rate, or the limit a fixed dt must respect
+  //! [-] dt = courant / max signal rate, or the limit a fixed dt must respect; unset in the input: the
+  //! recommended number of the run's transport and gas load (read_case(), ibm::recommended_courant())
+  double courant = cip::kPaperCourant;
   cip::GasPoint ambient{};
   //! [[gas.region]]: initial states (later regions overwrite earlier ones); products_fraction 1 for products;
   //! tracer 1 for the blast gas of a one-gas run (blast_gas, default true)

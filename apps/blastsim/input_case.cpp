@@ -42,6 +42,14 @@ Case read_case(const toml::table& input) {
   read_output(root, c);
   if (c.kind == CaseKind::rock) read_probe(root, c);
   if (c.kind == CaseKind::coupled) read_monitor(root, c), read_coupling(root, c);
+  if (c.kind == CaseKind::coupled) {  // the default Courant number of a coupled run follows its gas load too
+    for (EchoLine& e : c.echo)
+      if (e.key == "gas.courant" && e.text.size() > std::string(kDefaultMark).size() &&
+          e.text.compare(e.text.size() - std::string(kDefaultMark).size(), std::string::npos, kDefaultMark) == 0) {
+        c.gas.courant = ibm::recommended_courant(c.gas.solver.transport, c.coupling.gas_load);
+        e.text = fmt::format("gas.courant = {:g}{}", c.gas.courant, kDefaultMark);
+      }
+  }
   // Sampling intervals against the end time.
   check_interval("output.interval", c.output.interval, c.time.end, true);
   for (size_t k = 0; k < c.probes.points.size(); ++k)

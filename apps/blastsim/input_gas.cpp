@@ -118,10 +118,11 @@ void read_gas(TableReader& root, Case& c) {
   GasSettings& g = c.gas;
   TableReader gas = root.table("gas", true);
   g.eos = cip::EquationOfState::ideal(gas.number("gamma", "", Range::above(1.0), 1.4));
-  g.courant = gas.number("courant", "", Range{1e-6, 1.0, false, false}, 0.1);  // below 1e-6 a run never ends
   g.solver.transport = gas.text("transport", {"conservative", "paper"}, std::string("conservative")) == "paper"
                            ? cip::Transport::paper
                            : cip::Transport::conservative;
+  // below 1e-6 a run never ends; a coupled run's default also depends on its gas load (read_case())
+  g.courant = gas.number("courant", "", Range{1e-6, 1.0, false, false}, cip::recommended_courant(g.solver.transport));
   const cip::ArtificialViscosity q = cip::recommended_viscosity(g.solver.transport);
   g.solver.viscosity.linear = gas.number("viscosity_linear", "", Range::non_negative(), q.linear);
   g.solver.viscosity.quadratic = gas.number("viscosity_quadratic", "", Range::non_negative(), q.quadratic);

@@ -812,9 +812,15 @@ RockEnergies RockSolver::energies() const {
   RockEnergies e;
   e.kinetic = kinetic_energy();
   const double lambda = material_.lame_lambda(), mu = material_.shear_modulus();
+  // the strain at the middle of the last step (x - v dt / 2), where the work ledger and the kinetic energy of
+  // the half-step velocities stand (docs/fdem-solver.md, "Triangle internal force")
+  const double half_step = 0.5 * dt_prev_;
   e.strain = reduce_sum("fdem.energy.strain", triangles_, 0.0, [=] BLAST_HD(index_t t) {
     Vec2 p[3];
-    m.triangle(static_cast<int>(t), p);
+    for (int k = 0; k < 3; ++k) {
+      const int n = 3 * static_cast<int>(t) + k;
+      p[k] = {m.x[n] - half_step * m.vx[n], m.y[n] - half_step * m.vy[n]};
+    }
     return tp.area0[t] * triangle_strain_energy_density(tp.inv_f0[t], edge_matrix(p[0], p[1], p[2]), lambda, mu);
   });
   auto work_sum = [&](double NodeWork::*kind) {

@@ -82,7 +82,7 @@ CoupledStep GasRockCoupler::plan_step(double until) {
     return {*options_.fixed_dt, options_.rock_subcycling ? rock_substeps(*options_.fixed_dt, options_.rock_dt) : 1};
   const double t = gas_.time();
   for (const auto& p : processes_) until = std::min(until, p->next_event(t));
-  return plan_coupled_step(t, options_.courant / signal_rate_, options_.rock_dt, options_.rock_subcycling, until);
+  return plan_coupled_step(t, courant() / signal_rate_, options_.rock_dt, options_.rock_subcycling, until);
 }
 
 void GasRockCoupler::step(double dt, int rock_substeps) {
@@ -99,10 +99,10 @@ void GasRockCoupler::step(double dt, int rock_substeps) {
   if (within.empty()) {
     rock_.advance(dt / rock_substeps, rock_substeps);
   } else {
-    rock_.advance(dt / rock_substeps, rock_substeps, [&](int k) {
-      if (k == 0) return;
+    const double substep = dt / rock_substeps;
+    rock_.advance(substep, rock_substeps, [&](int k) {
       CouplingContext c = context();
-      for (CouplingProcess* p : within) p->before_rock_step(c, k);
+      for (CouplingProcess* p : within) p->before_rock_step(c, k, substep);
     });
   }
   {

@@ -8,6 +8,7 @@
 #include "blastsim/core/error.hpp"
 
 #include <sstream>
+#include <stdexcept>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -183,15 +184,16 @@ void CrackGas::step_from_primitives(double dt, double interval) {
                                      options_.flow(), dt});
 }
 
-int CrackGas::advance(double dt) {
+int CrackGas::advance(double dt, double interval) {
   if (!(dt > 0)) return 0;
+  if (!(interval >= dt)) throw std::invalid_argument("CrackGas::advance: the interval must be at least dt");
   update_primitives();
   const double limit = stable_dt();
   if (!(limit > 0))
     throw InstabilityError("crack gas state not valid: " + describe_invalid_segment());
   const int steps = std::isfinite(limit) ? std::max(1, static_cast<int>(std::ceil(dt / limit * (1 - 1e-12)))) : 1;
   for (int k = 0; k < steps; ++k) {  // each substep starts from the primitives just computed
-    step_from_primitives(dt / steps, dt);
+    step_from_primitives(dt / steps, interval);
     update_primitives();
   }
   return steps;

@@ -97,57 +97,69 @@ HandoverGaps CrackGasCoupling::handover_gaps(const cip::GasGrid& g) const {
 }
 
 void CrackGasCoupling::cover(CouplingContext& ctx) {
-  const int ns = crack_->segment_count();
-  const fdem::RockView rock = ctx.rock.view();
-  for_each_index("ibm.crack.geometry", ns,
-                 CrackGeometryKernel{rock, ctx.gas.materials(), a_->params.view(), crack_->geometry(),
+  update_geometry(ctx);
+  for_each_index("ibm.crack.gap_cover", crack_->segment_count(),
+                 CrackGapCoverKernel{ctx.rock.view(), ctx.gas.grid(), crack_->segments(), ctx.owners});
+}
+
+void CrackGasCoupling::update_geometry(CouplingContext& ctx) {
+  for_each_index("ibm.crack.geometry", crack_->segment_count(),
+                 CrackGeometryKernel{ctx.rock.view(), ctx.gas.materials(), a_->params.view(), crack_->geometry(),
                                      crack_->segments(), a_->handovers.view(), a_->cushion.view(), a_->walls.view(),
                                      crack_->options().residual_aperture,
                                      handover_gaps(ctx.gas.grid()), 0.5 * ctx.rock.last_step()});
-  for_each_index("ibm.crack.gap_cover", ns, CrackGapCoverKernel{rock, ctx.gas.grid(), crack_->segments(), ctx.owners});
+}
+
+void CrackGasCoupling::sort_records(int records, int mouth_records) {
+  for_each_index("ibm.crack.keys", records,
+                 CrackDepositKeyKernel{a_->mouth_cells.read(), a_->handovers.read(), a_->order.view(), mouth_records});
+  thrust::sequence(thrust::device, a_->order.record.begin(), a_->order.record.end());
+  thrust::stable_sort_by_key(thrust::device, a_->order.key.begin(), a_->order.key.end(), a_->order.record.begin());
+  count_host_wait();  // the sequence and the sort block
 }
 
 void CrackGasCoupling::after_gas(CouplingContext& ctx, double dt) {
   const int ns = crack_->segment_count(), mouth_records = kMouthSamples * crack_->junction_count();
   const int records = mouth_records + ns;
   const cip::GasGrid g = ctx.gas.grid();
-  // the hand-overs' cells, then the mouths, from the cells' new gas
-  for_each_index("ibm.crack.handover_cells", ns,
-                 HandoverCellKernel{ctx.rock.view(), g, ctx.gas.immersed_boundary().cell_active, crack_->segments(),
-                                    a_->handovers.view()});
+  // the mouths from the cells' new gas; the cells they share, sorted, set what each may draw over the step
   for_each_index("ibm.crack.mouths", crack_->junction_count(),
                  CrackMouthKernel{ctx.rock.view(), ctx.gas.materials(), g, ctx.gas.immersed_boundary().cell_active,
                                   ctx.gas.cells(), crack_->graph(), crack_->segments(), a_->places.view(),
                                   crack_->mouths(), a_->mouth_cells.view()});
-  // every record's cell, sorted: the mouths' shares of the cells they draw on now, the deposits after the step
-  for_each_index("ibm.crack.keys", records,
-                 CrackDepositKeyKernel{a_->mouth_cells.read(), a_->handovers.read(), a_->order.view(), mouth_records});
-  thrust::sequence(thrust::device, a_->order.record.begin(), a_->order.record.end());
-  thrust::stable_sort_by_key(thrust::device, a_->order.key.begin(), a_->order.key.end(), a_->order.record.begin());
-  count_host_wait();  // the sequence and the sort block
+  sort_records(records, mouth_records);
   for_each_index("ibm.crack.mouth_sharers", records,
                  MouthSharersKernel{a_->order.read(), a_->mouth_cells.view(), mouth_records, records});
   for_each_index("ibm.crack.mouth_gas", crack_->junction_count(),
                  MouthHeldGasKernel{g, ctx.gas.cells(), a_->mouth_cells.read(), crack_->mouths()});
-  crack_->advance(dt);
-  // what the mouths gave the cells, and the hand-overs, summed per cell in sorted order
+  interval_ = dt;
+}
+
+void CrackGasCoupling::before_rock_step(CouplingContext& ctx, int k, double dt) {
+  if (k > 0) update_geometry(ctx);  // substep 0: cover() set it from the rock as it stands
+  crack_->advance(dt, std::max(dt, interval_));
+  const fdem::RockView rock = ctx.rock.view();
+  for_each_index("ibm.crack.cushion", rock.joint_count,
+                 CrackCushionKernel{rock, a_->params.view(), crack_->segments(), a_->cushion.view(),
+                                    crack_->options().residual_aperture, 0.5 * ctx.rock.last_step()});
+}
+
+void CrackGasCoupling::after_rock(CouplingContext& ctx, double /*dt*/, int /*rock_substeps*/) {
+  const int ns = crack_->segment_count(), mouth_records = kMouthSamples * crack_->junction_count();
+  const int records = mouth_records + ns;
+  const cip::GasGrid g = ctx.gas.grid();
+  // the hand-overs' cells; what the mouths gave the cells over the substeps and the hand-overs, summed per cell
+  // in sorted order
+  for_each_index("ibm.crack.handover_cells", ns,
+                 HandoverCellKernel{ctx.rock.view(), g, ctx.gas.immersed_boundary().cell_active, crack_->segments(),
+                                    a_->handovers.view()});
+  sort_records(records, mouth_records);
   for_each_index("ibm.crack.deposit", records,
                  CrackDepositKernel{a_->order.read(), a_->mouth_cells.read(), crack_->deposit_view(), a_->handovers.read(),
                                     a_->exchange.view(), mouth_records, records, g.nx,
                                     g.cell_area(), ctx.gas.cells()});
   crack_->clear_deposits();
   for_each_index("ibm.crack.handover_clear", ns, HandoverClearKernel{a_->handovers.view()});
-}
-
-void CrackGasCoupling::load_rock(CouplingContext& ctx) { load_cushions(ctx, true); }
-
-void CrackGasCoupling::before_rock_step(CouplingContext& ctx, int /*k*/) { load_cushions(ctx, false); }
-
-void CrackGasCoupling::load_cushions(CouplingContext& ctx, bool start) {
-  const fdem::RockView rock = ctx.rock.view();
-  for_each_index(start ? "ibm.crack.cushion_start" : "ibm.crack.cushion", rock.joint_count,
-                 CrackCushionKernel{rock, a_->params.view(), crack_->segments(), a_->cushion.view(),
-                                    crack_->options().residual_aperture, 0.5 * ctx.rock.last_step(), start});
 }
 
 double CrackGasCoupling::outer_blast_fraction(const fdem::RockSolver& rock, std::array<double, 2> center, double radius,

@@ -131,6 +131,30 @@ TEST_CASE("A pre-cut crack of the input is broken at the start and carries the b
   CHECK(front <= 0.1 + 0.01);
 }
 
+TEST_CASE("A coupled case's default Courant number follows its transport and gas load", "[app][coupled][input]") {
+  auto read = [](const std::vector<std::string>& overrides) {
+    return app::read_case(app::load_input(single_hole_toml, overrides));
+  };
+  auto echoed = [](const app::Case& c) {
+    for (const app::EchoLine& e : c.echo)
+      if (e.key == "gas.courant") return e.text;
+    return std::string();
+  };
+  // The example sets no gas.courant: face forces with the conservative transport take that transport's number,
+  // the paper's edge pressures or the paper's transport the paper's number; a given number is kept.
+  const app::Case faces = read({"coupling.gas_load=\"faces\""});
+  CHECK(faces.gas.courant == ibm::recommended_courant(cip::Transport::conservative, ibm::GasLoad::face_forces));
+  CHECK(faces.gas.courant == cip::kConservativeCourant);
+  CHECK(echoed(faces) == std::string("gas.courant = 0.4") + app::kDefaultMark);
+  const app::Case edges = read({"coupling.gas_load=\"edges\""});
+  CHECK(edges.gas.courant == cip::kPaperCourant);
+  CHECK(echoed(edges) == std::string("gas.courant = 0.1") + app::kDefaultMark);
+  CHECK(read({"coupling.gas_load=\"faces\"", "gas.transport=\"paper\""}).gas.courant == cip::kPaperCourant);
+  const app::Case given = read({"coupling.gas_load=\"edges\"", "gas.courant=0.25"});
+  CHECK(given.gas.courant == 0.25);
+  CHECK(echoed(given) == "gas.courant = 0.25");
+}
+
 TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupled][bad]") {
   auto read = [](const std::vector<std::string>& overrides) {
     return app::read_case(app::load_input(single_hole_toml, overrides));

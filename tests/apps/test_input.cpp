@@ -58,7 +58,7 @@ TEST_CASE("A valid case is read with its defaults and echoed with units", "[app]
   const app::Case c = read(kValid);
   CHECK(c.gas.grid.nx == 20);
   CHECK_THAT(c.gas.grid.dx, WithinRel(0.05, 1e-14));
-  CHECK(c.gas.courant == 0.1);
+  CHECK(c.gas.courant == cip::kConservativeCourant);  // the conservative transport's recommended number
   CHECK(c.gas.solver.transport == cip::Transport::conservative);
   CHECK(c.gas.solver.viscosity.linear == 0.5);  // the conservative transport's coefficients
   CHECK(c.gas.solver.viscosity.quadratic == 1.0);
@@ -66,6 +66,8 @@ TEST_CASE("A valid case is read with its defaults and echoed with units", "[app]
   CHECK(paper.gas.solver.transport == cip::Transport::paper);
   CHECK(paper.gas.solver.viscosity.linear == 1.0);  // the paper's transport's coefficients
   CHECK(paper.gas.solver.viscosity.quadratic == 2.0);
+  CHECK(paper.gas.courant == cip::kPaperCourant);  // the paper's transport at the paper's number
+  CHECK(read(kValid, {"gas.transport=paper", "gas.courant=0.3"}).gas.courant == 0.3);  // a given number is kept
   CHECK_THAT(c.gas.ambient.internal_energy, WithinRel(1.0e5 / (0.4 * 1.2), 1e-14));  // from the pressure
   CHECK(c.gas.regions.size() == 1);
   CHECK(c.gas.initial_state(0.5, 0.25).density == 163.0);
@@ -73,7 +75,7 @@ TEST_CASE("A valid case is read with its defaults and echoed with units", "[app]
   bool echoed_units = false, echoed_default = false;
   for (const app::EchoLine& e : c.echo) {
     echoed_units |= e.text == "domain.x_max = 1 m" && e.key == "domain.x_max";
-    echoed_default |= contains(e.text, "gas.courant = 0.1") && contains(e.text, "(default)");
+    echoed_default |= contains(e.text, "gas.courant = 0.4") && contains(e.text, "(default)");
   }
   CHECK(echoed_units);
   CHECK(echoed_default);

@@ -30,7 +30,7 @@ Drift closed_box_drift(cip::Transport transport) {
   const cip::GasTotals t0 = s.totals();
   Drift d{0, 0};
   for (int k = 0; k < 1000; ++k) {
-    s.step(s.courant_dt(blastsim::test::validation_courant()));
+    s.step(s.courant_dt(blastsim::test::validation_courant(s.options().transport)));
     if (k % 50 == 49) {
       const cip::GasTotals t = s.totals();
       d.mass = std::fmax(d.mass, std::fabs(t.mass / t0.mass - 1));
@@ -68,7 +68,7 @@ TEST_CASE("G5 outflow boundary: an acoustic pulse leaves with at most 2 % reflec
     return cip::GasPoint{rho, eos.internal_energy(rho, p0 + dp), dp / (rho0 * c), 0.0};
   });
   // Until the pulse (width ~0.1) has left through x = 1 and a reflection would be back inside.
-  run_to(s, 0.7 / c, blastsim::test::validation_courant());
+  run_to(s, 0.7 / c, blastsim::test::validation_courant(s.options().transport));
   const std::vector<double> p = strip(s.to_host(), s.to_host().p, Axis::x);
   double residual = 0;
   for (double q : p) residual = std::fmax(residual, std::fabs(q - p0));
@@ -85,7 +85,7 @@ TEST_CASE("Conservation monitor: the balance with the boundary outflow closes wh
     return x * x + y * y < 0.05 * 0.05 ? cip::GasPoint{163.0, 4.29e5, 0, 0} : cip::GasPoint{1.20, 2.09e5, 0, 0};
   });
   const cip::GasTotals t0 = s.totals();
-  run_to(s, 4e-4, blastsim::test::validation_courant());
+  run_to(s, 4e-4, blastsim::test::validation_courant(s.options().transport));
   const cip::GasTotals t = s.totals();
   const cip::BoundaryOutflow& out = s.boundary_outflow();
   // The balance as the driver's monitor (gas_totals.csv) computes it.

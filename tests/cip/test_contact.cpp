@@ -29,7 +29,7 @@ ContactError advect_contact(int n, double rho_l, double rho_r, cip::Transport tr
   const double lo = std::min(rho_l, rho_r), hi = std::max(rho_l, rho_r), jump = hi - lo;
   ContactError worst;
   for (double t : {0.01, 0.035, 0.07, 0.14}) {
-    run_to(s, t, blastsim::test::validation_courant());
+    run_to(s, t, blastsim::test::validation_courant(s.options().transport));
     const cip::HostGasFields h = s.to_host();
     const std::vector<double> rho = strip(h, h.rho, Axis::x), pp = strip(h, h.p, Axis::x), uu = strip(h, h.u, Axis::x);
     for (int i = 0; i < n; ++i) {
@@ -49,7 +49,7 @@ double blastsim_l1(int n, const Primitive& L, const Primitive& R, double x0, dou
   opt.transport = transport;
   opt.viscosity = cip::recommended_viscosity(transport);
   cip::GasSolver s = make_shock_tube(n, Axis::x, L, R, x0, 1.0, 1.4, opt);
-  run_to(s, t, blastsim::test::validation_courant());
+  run_to(s, t, blastsim::test::validation_courant(s.options().transport));
   const ExactRiemann exact(L, R, 1.4);
   const cip::HostGasFields h = s.to_host();
   const std::vector<double> rho = strip(h, h.rho, Axis::x);
@@ -137,7 +137,7 @@ TEST_CASE("G9 Toro's test 2: the specific internal energy of the near-vacuum cen
   cip::GasSolverOptions opt;
   opt.viscosity = cip::recommended_viscosity(cip::Transport::conservative);
   cip::GasSolver s = make_shock_tube(n, Axis::x, L, R, x0, 1.0, gamma, opt);
-  run_to(s, t, blastsim::test::validation_courant());
+  run_to(s, t, blastsim::test::validation_courant(s.options().transport));
   const cip::HostGasFields h = s.to_host();
   const std::vector<double> e = strip(h, h.e, Axis::x);
   MusclHancock m(n, 1.0, x0, L, R, gamma);
@@ -198,7 +198,7 @@ TEST_CASE("G16 contacts born in shock tubes: density within 2 % of the jump beyo
     cip::GasSolverOptions opt;
     opt.viscosity = cip::recommended_viscosity(cip::Transport::conservative);
     cip::GasSolver s = make_shock_tube(n, Axis::x, c.L, c.R, 0.5, 1.0, 1.4, opt);
-    run_to(s, c.t, blastsim::test::validation_courant());
+    run_to(s, c.t, blastsim::test::validation_courant(s.options().transport));
     const ExactRiemann exact(c.L, c.R, 1.4);
     const cip::HostGasFields h = s.to_host();
     const std::vector<double> rho = strip(h, h.rho, Axis::x);

@@ -40,7 +40,7 @@ ExplosionResult run_explosion(int n, const RadialProfile& ref) {
     const double rho = in ? 1.0 : 0.125, p = in ? 1.0 : 0.1;
     return cip::GasPoint{rho, eos.internal_energy(rho, p), 0.0, 0.0};
   });
-  run_to(s, 0.25, blastsim::test::validation_courant());
+  run_to(s, 0.25, blastsim::test::validation_courant(s.options().transport));
   const cip::HostGasFields h = s.to_host();
   ExplosionResult r{0, 0, 0, 0, 0};
   const cip::GasGrid& g = s.grid();

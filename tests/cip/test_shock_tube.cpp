@@ -14,7 +14,7 @@ double sod_l1(int n, Axis axis) {
   const Primitive L{1.0, 0.0, 1.0}, R{0.125, 0.0, 0.1};
   cip::GasSolver s = make_shock_tube(n, axis, L, R, 0.5);
   const double t = 0.2;
-  run_to(s, t, blastsim::test::validation_courant());
+  run_to(s, t, blastsim::test::validation_courant(s.options().transport));
   const ExactRiemann exact(L, R, 1.4);
   const std::vector<double> rho = strip(s.to_host(), s.to_host().rho, axis);
   double err = 0;
@@ -72,7 +72,7 @@ TEST_CASE("G6 the paper's seed states (Table 1): positive, finite, exact shock s
   double x1 = 0, x2 = 0, rho_min = 1e300, e_min = 1e300;
   for (double t_stop : {t1, t2}) {
     while (s.time() < t_stop * (1 - 1e-12)) {
-      run_to(s, std::fmin(t_stop, s.time() + 0.02 * t1), blastsim::test::validation_courant());
+      run_to(s, std::fmin(t_stop, s.time() + 0.02 * t1), blastsim::test::validation_courant(s.options().transport));
       const cip::HostGasFields h = s.to_host();
       for (size_t k = 0; k < h.rho.size(); ++k) {
         REQUIRE(std::isfinite(h.rho[k]));
@@ -123,8 +123,8 @@ TEST_CASE("Mask interface: a wall placed through the immersed-boundary input ref
   const double t_hit = (wall - 0.5) / exact.right_shock_speed();
   const double t = t_hit + 0.04 / std::fabs(w_reflected);  // reflected shock 0.04 m from the wall
   REQUIRE(0.5 + exact.u_star() * t < wall - 0.06);          // the contact has not yet met it
-  run_to(masked, t, blastsim::test::validation_courant());
-  run_to(walled, t, blastsim::test::validation_courant());
+  run_to(masked, t, blastsim::test::validation_courant(masked.options().transport));
+  run_to(walled, t, blastsim::test::validation_courant(walled.options().transport));
   const std::vector<double> pm = strip(masked.to_host(), masked.to_host().p, Axis::x);
   const std::vector<double> pw = strip(walled.to_host(), walled.to_host().p, Axis::x);
   // Mean pressure over the cells within 0.025 m of the wall (behind the reflected shock).

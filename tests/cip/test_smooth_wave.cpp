@@ -21,7 +21,7 @@ double entropy_wave_error(int n) {
     const double rho = rho_exact(x, y);
     return cip::GasPoint{rho, eos.internal_energy(rho, 1.0), 1.0, 1.0};
   });
-  run_to(s, 1.0, blastsim::test::validation_courant());
+  run_to(s, 1.0, blastsim::test::validation_courant(s.options().transport));
   const cip::HostGasFields h = s.to_host();
   double err = 0;
   for (int j = 0; j < n; ++j)
@@ -43,7 +43,7 @@ double acoustic_wave_error(int n) {
     const double rho = 1.0 + dp(x) / (c * c);
     return cip::GasPoint{rho, eos.internal_energy(rho, 1.0 + dp(x)), dp(x) / c, 0.0};
   });
-  run_to(s, 1.0 / c, blastsim::test::validation_courant());
+  run_to(s, 1.0 / c, blastsim::test::validation_courant(s.options().transport));
   const cip::HostGasFields h = s.to_host();
   const std::vector<double> p = strip(h, h.p, Axis::x);
   double err = 0;

@@ -34,7 +34,7 @@ SedovResult sedov(int n, cip::Transport transport) {
     return cip::GasPoint{1.0, std::hypot(x, y) < r_dep ? e_dep + e_bg : e_bg, 0.0, 0.0};
   });
   const double E0 = s.totals().total_energy();
-  run_to(s, 1.0, blastsim::test::validation_courant());
+  run_to(s, 1.0, blastsim::test::validation_courant(s.options().transport));
   const cip::HostGasFields h = s.to_host();
   std::vector<double> sum(n / 2, 0.0), count(n / 2, 0.0);
   for (int j = 0; j < n; ++j)
@@ -58,7 +58,7 @@ double seed_shock_error(int n, cip::Transport transport) {
   cip::GasSolver s = make_shock_tube(n, Axis::x, L, R, 0.2, 1.0, 1.4, opt);
   const ExactRiemann exact(L, R, 1.4);
   const double t = 0.6 / exact.right_shock_speed();
-  run_to(s, t, blastsim::test::validation_courant());
+  run_to(s, t, blastsim::test::validation_courant(s.options().transport));
   const std::vector<double> p = strip(s.to_host(), s.to_host().p, Axis::x);
   const double mid = 0.5 * (exact.p_star() + R.p);
   for (int i = n - 1; i > 0; --i)

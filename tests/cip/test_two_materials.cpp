@@ -71,7 +71,7 @@ InterfaceErrors moving_interface(int n, double rho1, double rho2, double p, doub
   const double t_end = distance / std::fabs(u);
   InterfaceErrors e;
   for (int k = 1; k <= 4; ++k) {
-    run_to(s, k * t_end / 4, blastsim::test::validation_courant());
+    run_to(s, k * t_end / 4, blastsim::test::validation_courant(s.options().transport));
     const cip::HostGasFields h = s.to_host();
     const std::vector<double> pp = strip(h, h.p, Axis::x), uu = strip(h, h.u, Axis::x);
     for (int i = 0; i < n; ++i) {
@@ -159,7 +159,7 @@ TEST_CASE("G11 shock tubes of ANFO products into air against the exact solution"
     const double t = std::fmin((x0 - 0.05) / -exact.leftmost_speed(), (0.95 - x0) / exact.rightmost_speed());
     const int n = 800;
     cip::GasSolver s = products_tube(n, L, air, x0);
-    run_to(s, t, blastsim::test::validation_courant());
+    run_to(s, t, blastsim::test::validation_courant(s.options().transport));
     const cip::HostGasFields h = s.to_host();
     const std::vector<double> rho = strip(h, h.rho, Axis::x), p = strip(h, h.p, Axis::x);
     double err = 0, norm = 0, p_sum = 0;
@@ -208,7 +208,7 @@ TEST_CASE("G11 products into thin air at a density ratio of 1e4: positive and fi
   cip::GasSolver s = products_tube(400, L, R, 0.4);
   double rho_min = 1e300, p_min = 1e300, a_min = 1, a_max = 0;
   for (int k = 1; k <= 10; ++k) {
-    run_to(s, k * t / 10, blastsim::test::validation_courant());
+    run_to(s, k * t / 10, blastsim::test::validation_courant(s.options().transport));
     const cip::HostGasFields h = s.to_host();
     for (size_t i = 0; i < h.rho.size(); ++i) {
       REQUIRE(std::isfinite(h.rho[i]));
@@ -245,7 +245,7 @@ TEST_CASE("G11 closed box with a products disc: each material's mass and the ene
   cip::GasSolver s = make();
   const cip::GasTotals t0 = s.totals();
   auto advance = [](cip::GasSolver& g, int steps) {
-    for (int k = 0; k < steps; ++k) g.step(g.courant_dt(blastsim::test::validation_courant()));
+    for (int k = 0; k < steps; ++k) g.step(g.courant_dt(blastsim::test::validation_courant(g.options().transport)));
   };
   advance(s, 100);
   // Checkpoint after 100 steps, then 100 more; a solver restarted from the checkpoint must end identical.
@@ -360,7 +360,7 @@ TEST_CASE("G15 products | air tubes at density ratios 10 to 1e4: the pressure on
       const double t = std::fmin((x0 - 0.05) / -exact.leftmost_speed(), (0.95 - x0) / exact.rightmost_speed());
       for (int n : {400, 800}) {
         cip::GasSolver s = products_tube(n, L, R, x0, false, mat);
-        run_to(s, t, blastsim::test::validation_courant());
+        run_to(s, t, blastsim::test::validation_courant(s.options().transport));
         const cip::HostGasFields h = s.to_host();
         const std::vector<double> rho = strip(h, h.rho, Axis::x), p = strip(h, h.p, Axis::x),
                                   a = strip(h, h.alpha, Axis::x), Y = strip(h, h.traced, Axis::x);

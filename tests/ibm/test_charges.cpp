@@ -34,10 +34,11 @@ cip::GasMaterials air_and_anfo() {
   return mat;
 }
 
-//! The coupler's steps at the validations' Courant number.
-ibm::CouplerOptions charge_step_options() {
+//! The coupler's steps with gas load `load` at the validations' Courant number.
+ibm::CouplerOptions charge_step_options(ibm::GasLoad load = ibm::GasLoad::edge_pressures) {
   ibm::CouplerOptions o;
-  o.courant = test::validation_courant();
+  o.gas_load = load;
+  o.courant = test::validation_courant(ibm::recommended_courant(cip::Transport::conservative, load));
   return o;
 }
 
@@ -49,7 +50,7 @@ ibm::ChargeProducts anfo_products() {
 
 //! A square block of rock [-b, b]^2 with holes, in air on an N x N grid over [-w, w]^2, charges in the holes.
 //! `rigid`: every rock node held at rest (a rigid hole wall). The steps come from the coupler's plan_step() at
-//! the validations' Courant number (validation_courant(): the paper's 0.1 unless BLASTSIM_TEST_COURANT), which burns the charges due (those at t = 0 before the first dt) and lands
+//! the validations' Courant number (validation_courant(): the recommended one unless BLASTSIM_TEST_COURANT), which burns the charges due (those at t = 0 before the first dt) and lands
 //! a step on every initiation time.
 struct ChargedBlock {
   cip::GasSolver gas;
@@ -334,9 +335,7 @@ TEST_CASE("K6 with face forces: the budget closes within 5 % of the gas's work o
   fdem::RockSolver rock(
       fdem::build_topology(fdem::gmsh_rectangle_with_holes(-0.15, -0.15, 0.15, 0.15, {{{0.0, 0.0}, a}}, 0.012).mesh),
       test::intact_rock(), test::HoleInRock::no_contact());
-  ibm::CouplerOptions options = charge_step_options();
-  options.gas_load = ibm::GasLoad::face_forces;
-  ibm::GasRockCoupler coupler(gas, rock, test::table1_air, options);
+  ibm::GasRockCoupler coupler(gas, rock, test::table1_air, charge_step_options(ibm::GasLoad::face_forces));
   gas.initialise([&](double x, double y) {
     return x * x + y * y <= a * a ? cip::GasPoint{q.density, q.specific_energy, 0, 0, 1.0} : test::table1_air;
   });

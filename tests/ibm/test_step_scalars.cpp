@@ -25,8 +25,8 @@ TEST_CASE("I7 one host wait a coupled step: signal rate and rock speed in one re
   fdem::RockSolver& rock = blast.rock;
   ibm::GasRockCoupler& coupler = *blast.coupler;
   const int substeps = 3;
-  auto dt_now = [&] { return std::min(blastsim::test::validation_courant() / coupler.signal_rate(), substeps * 0.9 * rock.stable_dt()); };
-  coupler.step(std::min(gas.courant_dt(blastsim::test::validation_courant()), substeps * 0.9 * rock.stable_dt()), substeps);
+  auto dt_now = [&] { return std::min(blastsim::test::validation_courant(coupler.courant()) / coupler.signal_rate(), substeps * 0.9 * rock.stable_dt()); };
+  coupler.step(std::min(gas.courant_dt(blastsim::test::validation_courant(coupler.courant())), substeps * 0.9 * rock.stable_dt()), substeps);
   const long rebuilds = rock.contact_rebuilds();
   const long rock_steps = rock.steps();
   const LaunchCounts before = LaunchCounts::instance();

@@ -35,11 +35,11 @@ struct ShortBlast {
   ShortBlast(const ShortBlast&) = delete;  // the coupler holds references to the solvers
   ShortBlast& operator=(const ShortBlast&) = delete;
 
-  //! Coupled steps at the validations' Courant number (validation_courant()) and 0.9 of the rock's stable step to
+  //! Coupled steps at the validations' Courant number (validation_courant() of the coupler's) and 0.9 of the rock's stable step to
   //! t_end [s].
   void run_to(double t_end) {
     while (gas.time() < t_end * (1 - 1e-12)) {
-      const double dt = std::min({gas.courant_dt(blastsim::test::validation_courant()), 0.9 * rock.stable_dt(), t_end - gas.time()});
+      const double dt = std::min({gas.courant_dt(blastsim::test::validation_courant(coupler->courant())), 0.9 * rock.stable_dt(), t_end - gas.time()});
       coupler->step(dt);
     }
   }

@@ -34,6 +34,15 @@ inline ArtificialViscosity recommended_viscosity(Transport t) {
   return t == Transport::paper ? ArtificialViscosity{1.0, 2.0} : ArtificialViscosity{0.5, 1.0};
 }
 
+//! The paper's Courant number: dt = 0.1 / (largest signal rate).
+inline constexpr double kPaperCourant = 0.1;
+//! The Courant number measured to keep every gas and coupled check with the conservative transport
+//! (docs/performance.md, "The Courant number").
+inline constexpr double kConservativeCourant = 0.4;
+//! The default Courant number of each transport: the paper's transport keeps the mass of a closed box to its
+//! bound (G3) at the paper's number only (docs/performance.md).
+inline double recommended_courant(Transport t) { return t == Transport::paper ? kPaperCourant : kConservativeCourant; }
+
 //! GasSolverOptions::fusion.
 enum class KernelFusion {
   backend_default,  //!< fused on a GPU (fewer launches, shared arrays read once), separate on host threads

@@ -47,7 +47,8 @@ inline CoupledStep plan_coupled_step(double t, double gas_dt, double rock_dt, bo
 //! How the coupled steps are made (the driver's [time] and [coupling] keys).
 struct CouplerOptions {
   GasLoad gas_load = GasLoad::edge_pressures;  //!< how the grid gas loads the rock (gas_loading.hpp)
-  double courant = 0.1;          //!< [-] the gas's Courant number
+  //! [-] the gas's Courant number; unset: recommended_courant() of the gas's transport and the gas load
+  std::optional<double> courant;
   double rock_dt = 0;            //!< [s] the rock's step (0: its stable step)
   bool rock_subcycling = false;  //!< the rock takes as many steps of at most rock_dt as fill each gas step
   std::optional<double> fixed_dt;  //!< [s] every step's dt (the caller checks it against the limits)
@@ -87,14 +88,19 @@ class GasRockCoupler {
   //! One coupled step of dt [s]: rock_to_gas(), before_gas(), the gas step, after_gas(), gas_to_rock(), then
   //! `rock_substeps` rock steps of dt / rock_substeps (1: the paper's single dt; more: the rock subcycles,
   //! docs/coupling.md), then the charges lit by the new time burn. The host waits once, at the end, for the
-  //! gas's signal rate and the rock's largest speed in one reduction (one more wait for the crack deposits'
-  //! sort with crack gas). Throws InstabilityError on a non-finite rock.
+  //! gas's signal rate and the rock's largest speed in one reduction (with crack gas more: the two sorts of
+  //! its deposit records, and the channels' stable step before each rock substep). Throws InstabilityError on a non-finite rock.
   void step(double dt, int rock_substeps = 1);
   //! The gas's largest signal rate [1/s] for the next dt (+infinity on an invalid gas state): read with the
   //! rock's speed after step(), or by plan_step(); NaN before either.
   double signal_rate() const { return signal_rate_; }
   //! Largest dt [s] that both solvers accept: min(gas Courant limit at `courant`, rock stable step).
   double stable_dt(double courant) const;
+  //! [-] the Courant number plan_step() uses: CouplerOptions::courant, or recommended_courant() of the gas's
+  //! transport and the gas load.
+  double courant() const {
+    return options_.courant.value_or(recommended_courant(gas_.options().transport, options_.gas_load));
+  }
 
   // --- diagnostics (device reductions) ---
   //! What every process reports, summed into one record (coupling_process.hpp).

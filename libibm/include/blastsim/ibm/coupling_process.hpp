@@ -83,10 +83,10 @@ class CouplingProcess {
 
   // --- gas -> rock (GasRockCoupler::gas_to_rock()): the loads for the rock's next steps ---
   virtual void load_rock(CouplingContext& /*ctx*/) {}
-  //! True when the process updates its loads between the rock's substeps (before_rock_step()).
+  //! True when the process works before each of the rock's substeps (before_rock_step()).
   virtual bool updates_rock_steps() const { return false; }
-  //! Before rock substep k >= 1 of a coupled step (load_rock() set the loads of substep 0).
-  virtual void before_rock_step(CouplingContext& /*ctx*/, int /*k*/) {}
+  //! Before rock substep k (0 .. substeps - 1) of dt [s] of a coupled step; load_rock() ran before substep 0.
+  virtual void before_rock_step(CouplingContext& /*ctx*/, int /*k*/, double /*dt*/) {}
   //! After the rock's `rock_substeps` steps that fill the coupled step of dt [s].
   virtual void after_rock(CouplingContext& /*ctx*/, double /*dt*/, int /*rock_substeps*/) {}
 

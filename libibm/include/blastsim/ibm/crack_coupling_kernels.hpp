@@ -48,17 +48,13 @@ struct CushionFaces {
 }  // namespace blastsim::ibm
 BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::CushionFaces)
 namespace blastsim::ibm {
-//! Per segment, the gas as a cushion between its faces over the rock steps of one coupled step (set by
-//! load_rock(), updated before every rock substep, paid for in the next cover()): the isentrope it follows, the
-//! load its faces carry and where they stood, and the work of its loads so far.
+//! Per segment, the gas as a cushion between its faces over one rock substep (set before every substep from the
+//! gas the channel solver just advanced, paid for before the next: CrackGeometryKernel): the load its faces
+//! carry and where they stood.
 #define BLASTSIM_CRACK_CUSHION(X)                                                                   \
-  X(std::uint8_t, on, "1: the faces are loaded by this cushion since the last cover()")            \
-  X(double, p0, "pressure [Pa] at the start of the rock steps")                                    \
-  X(double, V0, "volume [m2 per m] then")                                                           \
-  X(double, exponent, "isentropic exponent 1 + p0 V0 / U0 [-]")                                    \
+  X(std::uint8_t, on, "1: the faces carry this cushion's load since the last geometry update")     \
   X(double, applied, "the pressure [Pa] the faces carry now (the gas's times dw / do)")           \
-  X(CushionFaces, faces, "where the faces stood when that load was set")                            \
-  X(double, work, "work [J/m] of the loads of the substeps before the last")
+  X(CushionFaces, faces, "where the faces stood when that load was set")
 //! Cumulative ledgers (checkpointed): per deposit record what it gave the grid's cells, per segment the work its
 //! gas did on the crack's walls (docs/coupling.md "Energy budget with crack gas").
 #define BLASTSIM_CRACK_EXCHANGE_LEDGER(X) X(ChannelConserved, to_grid, "per record: gas given to the cells since the start")
@@ -236,8 +232,8 @@ struct CrackGeometryKernel {
     ChannelConserved c = seg.cons[s];
     const double V_old = seg.volume[s];
     const ChannelPrimitive P = segment_state(mat, c, V_old);
-    if (loaded && !is_vacuum(P)) {  // the work of the cushion's loads since load_rock(): the last substep's too
-      const double W_rock = cushion.work[s] + cushion.applied[s] * swept_area(cushion.faces[s], f);
+    if (loaded && !is_vacuum(P)) {  // the work of the cushion's load over the last rock substep
+      const double W_rock = cushion.applied[s] * swept_area(cushion.faces[s], f);
       const double W = expansion_work(c, W_rock, P.p, V_old, V);
       c.E -= W;
       ledger.wall_work[s] += W;
@@ -521,16 +517,14 @@ struct CrackDepositKernel {
   }
 };
 
-//! The gas of a crack as a cushion between its faces over the rock steps of one coupled step (docs/coupling.md
-//! "Gas in the cracks"), one thread per joint. The first call (start: load_rock()) takes the gas's state after
-//! the channel's own steps as the start of an isentrope, p = p0 (V0 / V)^k with k = 1 + p0 V0 / U0 (exact for an
-//! ideal gas); before every later rock substep the faces' new volume V (JointFaces' opening times their mean
-//! length) gives the gas's pressure on that isentrope. The faces carry p times crack_width()'s dw_dopening over
-//! the grid gas's load (face A is edge slot a0, face B slot b0), and the work of the last substep's load, that
-//! load times swept_area(), is added up: the rock's own ledger of that load's work, which the gas pays in the
-//! next cover(). So a crack that closes on its gas within a coupled step stiffens as it closes, and the energy
-//! budget closes whatever way the faces move. Positions are taken at x - v dt / 2 (`lag`), where the rock's
-//! work ledger measures a substep's moves.
+//! The gas of a crack as a cushion between its faces over the coming rock substep (docs/coupling.md "Gas in the
+//! cracks"), one thread per joint, after the channel solver advanced the crack gas over that substep: the faces
+//! carry the gas's pressure times crack_width()'s dw_dopening over the grid gas's load (face A is edge slot a0,
+//! face B slot b0), and where they stand is kept, so that the next CrackGeometryKernel pays the work of that
+//! load, its pressure times swept_area(): the rock's own ledger of the load's work. The gas's own state follows
+//! its faces substep by substep, so a crack that closes on its gas stiffens as it closes and the energy budget
+//! closes whatever way the faces move. Positions are taken at x - v dt / 2 (`lag`), where the rock's work ledger
+//! measures a substep's moves.
 struct CrackCushionKernel {
   fdem::RockView rock;
   CrackSegmentParams params;
@@ -538,26 +532,16 @@ struct CrackCushionKernel {
   CrackCushion<Access::read_write> cushion;
   double residual_aperture;
   double lag;  //!< [s] half the rock's last step (joint_faces())
-  bool start;  //!< load_rock(): a new isentrope from the gas's state
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
     if (seg.kind[s] != kSegmentGas) return;
     const JointFaces f = joint_faces(rock, s, lag);
     const CrackWidth cw = crack_width(f.opening + params.initial_aperture[s], residual_aperture);
-    const double V = 0.5 * (f.la + f.lb) * cw.w;
-    double p = 0.0;
-    if (start) {
-      const ChannelPrimitive P = seg.prim[s];
-      const ChannelConserved c = seg.cons[s];
-      const double U = c.m > 0.0 ? c.E - 0.5 * c.q * c.q / c.m : 0.0;
-      p = is_vacuum(P) || !(U > 0.0) ? 0.0 : P.p;
-      cushion.on[s] = 1, cushion.p0[s] = p, cushion.V0[s] = V, cushion.work[s] = 0.0;
-      cushion.exponent[s] = p > 0.0 ? 1.0 + p * V / U : 1.0;
-    } else {
-      if (!cushion.on[s]) return;
-      cushion.work[s] += cushion.applied[s] * swept_area(cushion.faces[s], f);
-      p = cushion.p0[s] * pow(cushion.V0[s] / V, cushion.exponent[s]);
-    }
+    const ChannelPrimitive P = seg.prim[s];
+    const ChannelConserved c = seg.cons[s];
+    const double U = c.m > 0.0 ? c.E - 0.5 * c.q * c.q / c.m : 0.0;
+    const double p = is_vacuum(P) || !(U > 0.0) ? 0.0 : P.p;
+    cushion.on[s] = 1;
     const fdem::JointNodes jn = rock.joint.nodes[s];
     const fdem::NodeMotion<Access::read>& x = rock.nodes;
     const fdem::Vec2 na = fdem::edge_outward_normal(x.position(jn.a0), x.position(jn.a1));

@@ -100,7 +100,11 @@ class CrackGas {
   void step(double dt);
   //! Advances by dt [s] in ceil(dt / stable_dt()) equal substeps; returns their number. InstabilityError
   //! (describe_invalid_segment()) when a gas segment's state is not valid (segment_state_valid()).
-  int advance(double dt);
+  int advance(double dt) { return advance(dt, dt); }
+  //! The same, as one of the pieces of a longer `interval` [s] >= dt over which the mouths' reservoirs stay as
+  //! they are: each piece draws on them at most dt / interval of what they lend over the interval
+  //! (JunctionFluxKernel), so the pieces together draw no more than the whole interval would.
+  int advance(double dt, double interval);
   //! The first gas segment whose state is not valid, with its mass, momentum, energy, volume and aperture.
   std::string describe_invalid_segment() const;
   //! Recomputes the segments' primitive states (pressures for the faces' loads) from their gas.

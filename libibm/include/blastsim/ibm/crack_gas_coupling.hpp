@@ -37,16 +37,18 @@ class CrackGasCoupling : public CouplingProcess {
   //! (CrackGeometryKernel); the gaps of the cracks that keep their own gas are solid to the grid
   //! (CrackGapCoverKernel).
   void cover(CouplingContext& ctx) override;
-  //! After the gas step: the mouths from the cells' new gas, the channels' own steps over dt (as many as their
-  //! Courant limit needs), then what they gave to or took from the cells and the gas handed over (deposits
-  //! sorted by cell: the same bytes whatever the thread order).
+  //! After the gas step of dt [s]: the mouths from the cells' new gas, and what each may draw on over the step
+  //! (the cells they share, sorted by cell).
   void after_gas(CouplingContext& ctx, double dt) override;
-  //! The faces of every crack with its own gas take its pressure (after the grid gas's load): the start of the
-  //! isentrope its gas follows as a cushion over the coming rock steps (CrackCushionKernel).
-  void load_rock(CouplingContext& ctx) override;
-  //! Before every later rock substep: the cushions' pressures from their faces' new volumes.
+  //! Before every rock substep k of dt [s]: the channels' geometry from the rock as it stands (after substep 0:
+  //! joints that broke in the last substep join the network, CrackGeometryKernel), the channels' own steps over
+  //! dt (as many as their Courant limit needs), then their gas's pressure on the crack faces for the substep
+  //! (CrackCushionKernel). So gas enters a crack one rock substep after it breaks, whatever the gas step.
   bool updates_rock_steps() const override { return true; }
-  void before_rock_step(CouplingContext& ctx, int k) override;
+  void before_rock_step(CouplingContext& ctx, int k, double dt) override;
+  //! After the rock's substeps: what the mouths gave to or took from the cells over them and the gas handed
+  //! over, deposited (sorted by cell: the same bytes whatever the thread order).
+  void after_rock(CouplingContext& ctx, double dt, int rock_substeps) override;
 
   //! Pre-cut cracks whose faces touch in the mesh but stand `aperture` [m] apart (a hydraulic opening added
   //! to the faces' own; [[rock.crack]] initial_aperture). Throws InputError for a joint out of range or a
@@ -78,7 +80,11 @@ class CrackGasCoupling : public CouplingProcess {
 
  private:
   std::unique_ptr<CrackGas> crack_;
-  void load_cushions(CouplingContext& ctx, bool start);
+  //! Every channel's length, aperture and kind from the rock (CrackGeometryKernel).
+  void update_geometry(CouplingContext& ctx);
+  //! The deposit records' cell keys, sorted (records: the mouths' samples, then the segments).
+  void sort_records(int records, int mouth_records);
+  double interval_ = 0;  //!< [s] the coupled step the rock's substeps fill (after_gas())
   std::unique_ptr<detail::CrackCouplingArrays> a_;
 };
 

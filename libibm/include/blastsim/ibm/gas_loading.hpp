@@ -24,6 +24,12 @@ enum class GasLoad {
 const char* gas_load_name(GasLoad load);
 //! The face-point rule that goes with a load: face forces need the faces to move with the surface they load.
 FacePointRule face_point_rule(GasLoad load);
+//! The default Courant number of a coupled run: the transport's (cip::recommended_courant()), and the paper's
+//! with its edge pressures, whose energy budget holds at the paper's number only when the rock subcycles
+//! (docs/performance.md, "The Courant number"). Face forces pay the rock's work over the substeps exactly.
+inline double recommended_courant(cip::Transport t, GasLoad load) {
+  return load == GasLoad::edge_pressures ? cip::kPaperCourant : cip::recommended_courant(t);
+}
 
 namespace detail {
 struct FaceWorkArrays;
