@@ -423,7 +423,7 @@ struct MouthHeldGasKernel {
   }
 };
 
-//! The cell each segment's handed gas goes to (one thread per segment, after the gas step, before the mouths): the active cell
+//! The cell each segment's handed gas goes to (one thread per segment, after the rock's substeps): the active cell
 //! nearest to the middle of its gap (3 x 3 block); -1 for a segment that handed nothing. A segment whose gap
 //! opened no active cell (rare: other rock over it) takes its gas back and stays a gas segment.
 struct HandoverCellKernel {
@@ -443,7 +443,11 @@ struct HandoverCellKernel {
       handovers.cell[s] = fj * g.nx + fi;
       return;
     }
-    seg.kind[s] = kSegmentGas, seg.cons[s] = handovers.gas[s];
+    // (a crack that closed back below the hand-over gap within the step is a gas segment again and may hold gas
+    // its neighbours gave it since: the hand-over is added to it)
+    const ChannelConserved h = handovers.gas[s];
+    const ChannelConserved c = seg.kind[s] == kSegmentGas ? seg.cons[s] : ChannelConserved{0, 0, 0, 0, 0};
+    seg.kind[s] = kSegmentGas, seg.cons[s] = {c.m + h.m, c.q + h.q, c.E + h.E, c.m1 + h.m1, c.am + h.am};
     handovers.pending[s] = 0, handovers.gas[s] = {0, 0, 0, 0, 0};
   }
 };
