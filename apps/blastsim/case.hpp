@@ -38,6 +38,7 @@ struct GasSettings {
   //! [-] dt = courant / max signal rate, or the limit a fixed dt must respect; unset in the input: the
   //! recommended number of the run's transport and gas load (read_case(), ibm::recommended_courant())
   double courant = cip::kPaperCourant;
+  bool courant_given = false;  //!< gas.courant is in the input
   cip::GasPoint ambient{};
   //! [[gas.region]]: initial states (later regions overwrite earlier ones); products_fraction 1 for products;
   //! tracer 1 for the blast gas of a one-gas run (blast_gas, default true)

@@ -42,13 +42,10 @@ Case read_case(const toml::table& input) {
   read_output(root, c);
   if (c.kind == CaseKind::rock) read_probe(root, c);
   if (c.kind == CaseKind::coupled) read_monitor(root, c), read_coupling(root, c);
-  if (c.kind == CaseKind::coupled) {  // the default Courant number of a coupled run follows its gas load too
+  if (c.kind == CaseKind::coupled && !c.gas.courant_given) {  // a coupled run's default follows its gas load too
+    c.gas.courant = ibm::recommended_courant(c.gas.solver.transport, c.coupling.gas_load);
     for (EchoLine& e : c.echo)
-      if (e.key == "gas.courant" && e.text.size() > std::string(kDefaultMark).size() &&
-          e.text.compare(e.text.size() - std::string(kDefaultMark).size(), std::string::npos, kDefaultMark) == 0) {
-        c.gas.courant = ibm::recommended_courant(c.gas.solver.transport, c.coupling.gas_load);
-        e.text = fmt::format("gas.courant = {:g}{}", c.gas.courant, kDefaultMark);
-      }
+      if (e.key == "gas.courant") e.text = fmt::format("gas.courant = {:g}{}", c.gas.courant, kDefaultMark);
   }
   // Sampling intervals against the end time.
   check_interval("output.interval", c.output.interval, c.time.end, true);

@@ -122,6 +122,7 @@ void read_gas(TableReader& root, Case& c) {
                            ? cip::Transport::paper
                            : cip::Transport::conservative;
   // below 1e-6 a run never ends; a coupled run's default also depends on its gas load (read_case())
+  g.courant_given = gas.has("courant");
   g.courant = gas.number("courant", "", Range{1e-6, 1.0, false, false}, cip::recommended_courant(g.solver.transport));
   const cip::ArtificialViscosity q = cip::recommended_viscosity(g.solver.transport);
   g.solver.viscosity.linear = gas.number("viscosity_linear", "", Range::non_negative(), q.linear);
