@@ -10,6 +10,7 @@
 #include "rock_storage.hpp"
 
 #include <thrust/binary_search.h>
+#include <thrust/copy.h>
 #include <thrust/extrema.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
@@ -464,7 +465,7 @@ void RockSolver::build_contact_pairs() {
   const index_t slots = a.grid.neighbour_list.size();
   p.slot_pair.resize(slots);
   p.pair.resize(std::max(pairs, 1));
-  p.touch.resize(std::max(pairs, 1));
+  p.touch.assign(std::max(pairs, 1), 0);  // a pair contact never evaluates (held together) never touches
   p.load.resize(std::max(pairs, 1));
   p.offset.assign(std::max(pairs, 1), -1.0);  // none yet; a rebuild carries the old ones over
   p.bond.resize(std::max(pairs, 1));
@@ -478,6 +479,40 @@ void RockSolver::build_contact_pairs() {
   if (unmatched > 0)
     throw std::logic_error("contact broad phase: " + std::to_string(static_cast<long>(unmatched)) +
                            " candidate slots have no partner slot (the candidate lists must be symmetric)");
+  list_free_pairs();
+}
+
+// Most candidate pairs of an intact mesh are held together by a joint or at a bonded vertex (about five in six
+// in the single-hole example) and never need a contact test. Contact evaluates the pairs free when the lists
+// are made, and those a joint's break has released since (ReleasedPairsKernel); a pair released is never held
+// again, so no list has to shrink between builds.
+void RockSolver::list_free_pairs() {
+  detail::RockArrays& a = *a_;
+  const detail::ContactPairsArrays& p = a.pairs;
+  const int vertices = static_cast<int>(a.vertex_joint_offset.size()) - 1;
+  if (joints_ > 0)  // the bonds as the joints now stand (a restart or break_joints() may have changed them)
+    for_each_index("fdem.vertex_bonds", vertices,
+                   VertexBondKernel{device_ptr(a.vertex_joint_offset), device_ptr(a.vertex_joints),
+                                    device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
+  a.joint_broken_listed = a.joints.broken;
+  a.vertex_bonded_listed = a.vertex_bonded;
+  const int* bond = device_ptr(p.bond);
+  a.free_pairs.resize(std::max(pairs_, 1));
+  const auto free_end = thrust::copy_if(thrust::device, thrust::counting_iterator<int>(0),
+                                        thrust::counting_iterator<int>(pairs_), a.free_pairs.begin(),
+                                        PairFree{bond, device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
+  free_pairs_ = static_cast<int>(free_end - a.free_pairs.begin());
+  // Each joint's pair, and the pairs grouped by the vertex they meet at (stable: in pair order within a vertex).
+  a.joint_pair.assign(std::max(joints_, 1), -1);
+  DeviceVector<int> key(std::max(pairs_, 1));
+  a.vertex_pairs.resize(std::max(pairs_, 1));
+  for_each_index("fdem.grid.pair_groups", pairs_,
+                 PairGroupKernel{bond, vertices, device_ptr(key), device_ptr(a.vertex_pairs), device_ptr(a.joint_pair)});
+  thrust::stable_sort_by_key(thrust::device, key.begin(), key.begin() + pairs_, a.vertex_pairs.begin());
+  a.vertex_pair_offset.resize(vertices + 1);
+  thrust::lower_bound(thrust::device, key.begin(), key.begin() + pairs_, thrust::counting_iterator<int>(0),
+                      thrust::counting_iterator<int>(vertices + 1), a.vertex_pair_offset.begin());
+  for (int k = 0; k < 3; ++k) count_host_wait();  // the selection (its length), the sort and the search block
 }
 
 void RockSolver::step(double dt) {
@@ -585,15 +620,18 @@ void RockSolver::contact_forces(double dt) {
                                penalty,
                                material_.contact_friction,
                                dt};
-#if defined(BLASTSIM_BACKEND_CUDA) || defined(__CUDACC__)
-  for_each_index("fdem.contact.pairs", pairs_, pair);  // in pair order: neighbouring threads read neighbouring pairs
-#else
-  // CPU: the static OpenMP schedule gives each thread one contiguous run of pairs, and the pairs that touch
-  // (numbered with their triangles: around the hole and the cracks) bunch up in a few runs. Visiting them in
-  // chunks from interleaved lanes spreads them over the threads; a pair's result does not depend on when it runs.
-  const InterleavedPairs interleaved{pair, pairs_, InterleavedPairs::chunks_per_lane_for(pairs_)};
-  for_each_index("fdem.contact.pairs", interleaved.launch_size(), interleaved);
-#endif
+  // The free pairs (list_free_pairs) in list order, then those released since the lists were made, in interleaved
+  // chunks: they bunch up in index space (around the hole and the cracks), and each host thread takes one
+  // contiguous run of launch indices.
+  for_each_index("fdem.contact.pairs", free_pairs_, ListedPairs{pair, device_ptr(a.free_pairs)});
+  if (joints_ > 0) {
+    const ReleasedPairsKernel rk{pair, device_ptr(a.joint_broken_listed), device_ptr(a.vertex_bonded_listed),
+                                 device_ptr(a.joint_pair), device_ptr(a.vertex_pair_offset), device_ptr(a.vertex_pairs),
+                                 joints_};
+    const index_t n = joints_ + static_cast<index_t>(a.vertex_joint_offset.size() - 1);
+    const auto released = Interleaved<ReleasedPairsKernel>::over(rk, n);
+    for_each_index("fdem.contact.released", released.launch_size(), released);
+  }
   for_each_index("fdem.contact.gather", triangles_,
                  ContactGatherKernel{device_ptr(a.grid.neighbour_offset), a.pairs.read(), a.forces.view(),
                                      a.triangles.view(), dt});

@@ -50,6 +50,12 @@ struct RockArrays {
   // joints.broken each step, not checkpointed); contact skips the pairs that meet at a bonded vertex
   DeviceVector<int> vertex_joint_offset, vertex_joints;
   DeviceVector<std::uint8_t> vertex_bonded;
+  // Contact work lists (derived from the pairs, remade with them): the pairs that no intact joint or bonded
+  // vertex held when the lists were made (`free_pairs`), the joints' and vertices' state then (`*_listed`), each
+  // joint's pair (-1: none), the pairs that meet at each mesh vertex (CSR); contact evaluates the free pairs and
+  // those released since (RockSolver::contact_forces)
+  DeviceVector<int> free_pairs, joint_pair, vertex_pair_offset, vertex_pairs;
+  DeviceVector<std::uint8_t> joint_broken_listed, vertex_bonded_listed;
   // velocity probes (set_probes): their stations (fixed) and peaks (checkpointed as rock.probes.peak)
   DeviceVector<ProbeStation> probe_station;
   DeviceVector<ProbePeak> probe_peak;

@@ -73,7 +73,7 @@ class RockSolver {
   // --- the phases of step(), public for benchmarks and profiling (call them in this order) ---
   void triangle_forces(double dt);  //!< internal forces, stresses, damping, edge pressures (one thread per triangle)
   void joint_forces();              //!< cohesive joints, damage, breakage (one thread per joint)
-  void contact_forces(double dt);   //!< contact and friction (one thread per triangle); no-op without contact
+  void contact_forces(double dt);   //!< contact and friction (one thread a pair, then a gather); no-op without contact
   void update_nodes(double dt);     //!< gather and integrate (one thread per node)
 
   // --- loads and constraints (host calls between steps) ---
@@ -185,6 +185,7 @@ class RockSolver {
 
  private:
   void build_contact_pairs();  //!< pair numbering from the candidate lists (rebuild, checkpoint read)
+  void list_free_pairs();      //!< contact's work lists from the pairs and the joints' state (build_contact_pairs)
 
   RockMaterial material_;
   RockOptions options_;
@@ -200,7 +201,7 @@ class RockSolver {
   // contact broad phase: uniform grid (cell size, origin, cells), buffer, pairs, travel since the last build
   double cell_size_ = 0, grid_x0_ = 0, grid_y0_ = 0;
   int grid_nx_ = 0, grid_ny_ = 0;
-  int pairs_ = 0;
+  int pairs_ = 0, free_pairs_ = 0;  // candidate pairs; those not held when the work lists were made
   int probes_ = 0;
   double buffer_ = 0, travel_since_build_ = 0;
   double last_speed_ = 0;    // largest node speed of the last finish_motion() [m/s]

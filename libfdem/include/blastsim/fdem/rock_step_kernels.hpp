@@ -385,6 +385,13 @@ struct VertexBondKernel {
   }
 };
 
+//! Whether a candidate pair is held together (PairBondKernel's `bond`): by its joint while intact (bond >= 0), or
+//! at its one common mesh vertex while all that vertex's joints are intact (bond <= -2). Once released, never
+//! held again (joints do not heal).
+BLAST_HD inline bool pair_held(int bond, const std::uint8_t* joint_broken, const std::uint8_t* vertex_bonded) {
+  return bond >= 0 ? !joint_broken[bond] : bond <= -2 && vertex_bonded[-2 - bond];
+}
+
 //! Contact of one pair (i, j), i < j (Munjiza's distributed potential, contact_kernels.hpp): the loads on
 //! both triangles' nodes from all six edge-against-target evaluations, each evaluated once. Skipped: pairs
 //! joined by an intact joint, pairs that meet at one mesh vertex whose joints are all intact (their corners
@@ -407,7 +414,7 @@ struct ContactPairKernel {
   BLAST_HD void operator()(index_t p) const {
     touch[p] = 0;
     const int b = bond[p];
-    if (b >= 0 ? !joint_broken[b] : b <= -2 && vertex_bonded[-2 - b]) return;  // held together (offset stays -1)
+    if (pair_held(b, joint_broken, vertex_bonded)) return;  // held together (offset stays -1)
     const int vertex = b <= -2 ? -2 - b : -1;
     const double s = vertex >= 0 ? offset[p] : 0.0;  // Munjiza's contact for all but pairs that meet at one vertex
     const int i = pair[p].i, j = pair[p].j;
@@ -440,21 +447,79 @@ struct ContactPairKernel {
   }
 };
 
-//! ContactPairKernel over the pairs in chunks of 256 consecutive pairs, the chunks visited in 64 interleaved lanes
-//! (CPU load balance: see RockSolver::contact_forces): launch index q lies in visit k = q / 256, which is chunk
-//! (k mod 64) x chunks_per_lane + k / 64, at offset q mod 256; indices past the last pair do nothing. A thread's
-//! contiguous run of launch indices thus takes chunks from all over the pair range, each read in order.
-struct InterleavedPairs {
-  static constexpr index_t lanes = 64, chunk = 256;
-  ContactPairKernel pair;
-  index_t pairs;
-  index_t chunks_per_lane;  //!< chunks_per_lane_for(pairs)
-  static index_t chunks_per_lane_for(index_t n) { return ((n + chunk - 1) / chunk + lanes - 1) / lanes; }
-  index_t launch_size() const { return lanes * chunks_per_lane * chunk; }
+//! f(e) for e in [0, n), visited in chunks of consecutive indices taken from 64 interleaved lanes (CPU load
+//! balance: the static OpenMP schedule gives each host thread one contiguous run of launch indices, and the
+//! work of the contact kernels bunches up in index space: around the hole and the cracks). Launch index q lies
+//! in visit k = q / chunk, which is chunk (k mod 64) x chunks_per_lane + k / 64, at offset q mod chunk; indices
+//! past n do nothing. A thread's run thus takes chunks from all over [0, n), each read in order (on a GPU,
+//! neighbouring threads still read neighbouring entries). over() picks the chunk (256 down to 16 entries) so that
+//! each lane holds at least four chunks. f's results must not depend on when or by which thread it runs.
+template <class F>
+struct Interleaved {
+  static constexpr index_t lanes = 64;
+  F f;
+  index_t n;
+  int chunk_bits;  //!< chunk = 2^chunk_bits entries
+  index_t chunks_per_lane;
+  static Interleaved over(const F& f, index_t n) {
+    int bits = 8;
+    while (bits > 4 && n < (lanes * 4) << bits) --bits;
+    const index_t chunk = index_t(1) << bits;
+    return {f, n, bits, ((n + chunk - 1) / chunk + lanes - 1) / lanes};
+  }
+  index_t launch_size() const { return (lanes * chunks_per_lane) << chunk_bits; }
   BLAST_HD void operator()(index_t q) const {
-    const index_t k = q / chunk;
-    const index_t p = ((k % lanes) * chunks_per_lane + k / lanes) * chunk + q % chunk;
-    if (p < pairs) pair(p);
+    const index_t k = q >> chunk_bits;
+    const index_t e = (((k % lanes) * chunks_per_lane + k / lanes) << chunk_bits) + (q & ((index_t(1) << chunk_bits) - 1));
+    if (e < n) f(e);
+  }
+};
+
+//! ContactPairKernel on entry e of a list of pairs.
+struct ListedPairs {
+  ContactPairKernel pair;
+  const int* list;
+  BLAST_HD void operator()(index_t e) const { pair(list[e]); }
+};
+
+//! Predicate of the free-pair list: candidate pair q is not held together (pair_held()).
+struct PairFree {
+  const int* bond;
+  const std::uint8_t *joint_broken, *vertex_bonded;
+  BLAST_HD bool operator()(int q) const { return !pair_held(bond[q], joint_broken, vertex_bonded); }
+};
+
+//! The keys that group the pairs by the mesh vertex they meet at (`vertices` for the pairs that meet at none),
+//! and each joint's pair (-1 where the joint has none; joint_pair cleared before).
+struct PairGroupKernel {
+  const int* bond;
+  int vertices;
+  int *vertex_key, *vertex_pairs, *joint_pair;
+  BLAST_HD void operator()(index_t q) const {
+    const int b = bond[q];
+    vertex_key[q] = b <= -2 ? -2 - b : vertices;
+    vertex_pairs[q] = static_cast<int>(q);
+    if (b >= 0) joint_pair[b] = static_cast<int>(q);  // a joint holds one pair: no two threads write one entry
+  }
+};
+
+//! ContactPairKernel on the pairs released since the work lists were made (RockSolver::list_free_pairs): launch
+//! index k < joints is joint k, whose pair it evaluates once the joint has broken since; k = joints + v is mesh
+//! vertex v, whose pairs it evaluates once v has lost its bond since (VertexBondKernel of this step). Every such
+//! pair is evaluated by exactly one thread, and none of them is in the free list.
+struct ReleasedPairsKernel {
+  ContactPairKernel pair;
+  const std::uint8_t *joint_broken_listed, *vertex_bonded_listed;
+  const int *joint_pair, *vertex_pair_offset, *vertex_pairs;
+  index_t joints;
+  BLAST_HD void operator()(index_t k) const {
+    if (k < joints) {
+      if (pair.joint_broken[k] && !joint_broken_listed[k] && joint_pair[k] >= 0) pair(joint_pair[k]);
+      return;
+    }
+    const index_t v = k - joints;
+    if (pair.vertex_bonded[v] || !vertex_bonded_listed[v]) return;
+    for (int s = vertex_pair_offset[v]; s < vertex_pair_offset[v + 1]; ++s) pair(vertex_pairs[s]);
   }
 };
 
