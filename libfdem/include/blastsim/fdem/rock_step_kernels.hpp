@@ -178,6 +178,7 @@ struct JointForceKernel {
     JointPointDamage& damage = state.damage[j];
     JointPointValues& separation = state.separation[j];
     JointPointValues& traction = state.traction[j];
+    BLAST_UNROLL
     for (int q = 0; q < kJointPoints; ++q) {
       const Vec2 xa{pa0.x + xi[q] * (pa1.x - pa0.x), pa0.y + xi[q] * (pa1.y - pa0.y)};
       const Vec2 xb{pb1.x + xi[q] * (pb0.x - pb1.x), pb1.y + xi[q] * (pb0.y - pb1.y)};
