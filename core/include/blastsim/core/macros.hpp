@@ -11,10 +11,11 @@
 #endif
 
 //! Unrolls the next loop (a short one of fixed trip count): in device code so that small arrays indexed by its
-//! counter stay in registers, on host threads (GCC) so that its iterations' long-latency divisions overlap.
+//! counter stay in registers, on host threads (GCC, CPU backend) so that its iterations' long-latency divisions
+//! overlap. Not in nvcc's host pass, whose front end does not know GCC's pragma.
 #if defined(__CUDA_ARCH__)
 #define BLAST_UNROLL _Pragma("unroll")
-#elif defined(__GNUC__) && !defined(__clang__)
+#elif defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
 #define BLAST_UNROLL _Pragma("GCC unroll 8")
 #else
 #define BLAST_UNROLL
