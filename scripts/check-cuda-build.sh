@@ -16,6 +16,6 @@ cmake --preset cuda-check
 if [ "${1:-}" = "--all" ]; then
   cmake --build --preset cuda-check -j2
 else
-  cmake --build --preset cuda-check -j2 --target blastsim blastsim-bench-cip blastsim-bench-fdem blastsim-bench-coupled
+  cmake --build --preset cuda-check -j2 --target blastsim blastsim-bench-cip blastsim-bench-fdem blastsim-bench-coupled blastsim-bench-explosion
 fi
 echo "check-cuda-build: CUDA backend compiled and linked"

@@ -1,0 +1,124 @@
+//! \file bench_explosion.cpp
+//! \brief Cost against accuracy of the gas solver on Toro's 2-D cylindrical explosion (docs/validation.md G2):
+//! wall time and density L1 error against a fine radial reference, per grid; also the L1 error of another
+//! code's density field on the same grid (an OpenFOAM ASCII volScalarField), for comparisons at equal accuracy
+//! (scripts/compare-openfoam.sh, docs/performance.md "The gas against rhoCentralFoam").
+//!
+//! Case (Toro 2009, Riemann Solvers and Numerical Methods for Fluid Dynamics, 3rd ed., sec. 17.1): [-1, 1]^2,
+//! rho = 1, p = 1 for r < 0.4 (cell centres), rho = 0.125, p = 0.1 outside, at rest, gamma = 1.4, to t = 0.25.
+//! Reference: the cylindrically symmetric 1-D problem on 6,000 cells over [0, 1.5] (the same as test G2).
+#include "bench_common.hpp"
+#include "blastsim/cip/gas_solver.hpp"
+#include "radial_reference.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace blastsim;
+using Clock = std::chrono::steady_clock;
+
+test::RadialProfile reference() {
+  return test::solve_radial(6000, 1.5, 1.4, 0.25, [](double r) { return r < 0.4 ? 1.0 : 0.125; },
+                            [](double r) { return r < 0.4 ? 1.0 : 0.1; });
+}
+
+//! Mean |rho - rho_ref| over the n x n cells of [-1, 1]^2, rho[j n + i] at cell (i, j) (i along x).
+double density_l1(const std::vector<double>& rho, int n, const test::RadialProfile& ref) {
+  const double h = 2.0 / n;
+  double sum = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      sum += std::fabs(rho[static_cast<size_t>(j) * n + i] - ref.density_at(std::hypot(-1 + (i + 0.5) * h, -1 + (j + 0.5) * h)));
+  return sum / (static_cast<double>(n) * n);
+}
+
+//! The internalField of an OpenFOAM ASCII volScalarField ("nonuniform List<scalar> N ( v0 v1 ... )").
+std::vector<double> read_openfoam_field(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::string word;
+  while (in >> word && word != "internalField") {
+  }
+  std::string kind, list;
+  size_t count = 0;
+  char open = 0;
+  if (!(in >> kind >> list >> count >> open) || kind != "nonuniform" || open != '(')
+    throw std::runtime_error(path + ": internalField is not an ASCII nonuniform List<scalar>");
+  std::vector<double> v(count);
+  for (double& x : v)
+    if (!(in >> x)) throw std::runtime_error(path + ": fewer values than the list's length");
+  return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes{100, 200, 400};
+  double courant = 0;  // 0: the solver's recommended number for its transport
+  std::string field_path;
+  int field_n = 0;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg.rfind("--sizes=", 0) == 0) {
+      sizes = bench::parse_int_list(arg.substr(8));
+    } else if (arg.rfind("--courant=", 0) == 0) {
+      courant = std::stod(arg.substr(10));
+    } else if (arg.rfind("--openfoam-rho=", 0) == 0) {
+      field_path = arg.substr(15);
+    } else if (arg.rfind("--n=", 0) == 0) {
+      field_n = std::stoi(arg.substr(4));
+    } else {
+      std::fprintf(stderr,
+                   "usage: %s [--sizes=100,200,...] [--courant=C]\n"
+                   "       %s --openfoam-rho=CASE/TIME/rho --n=N   (L1 of an N x N field over [-1, 1]^2)\n",
+                   argv[0], argv[0]);
+      return 2;
+    }
+  }
+  const test::RadialProfile ref = reference();
+  if (!field_path.empty()) {
+    const std::vector<double> rho = read_openfoam_field(field_path);
+    if (field_n <= 0 || rho.size() != static_cast<size_t>(field_n) * field_n) {
+      std::fprintf(stderr, "--n=%d: the field holds %zu values, not n^2 with n > 0\n", field_n, rho.size());
+      return 2;
+    }
+    std::printf("field %s, %d x %d cells: density L1 %.4e\n", field_path.c_str(), field_n, field_n,
+                density_l1(rho, field_n, ref));
+    return 0;
+  }
+  const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);
+  std::printf("backend %s, threads %d; Toro's cylindrical explosion to t = 0.25\n", backend_name(), bench::thread_count());
+  std::printf("%6s %8s %7s %10s %14s %12s\n", "n", "courant", "steps", "seconds", "cell upd./s", "density L1");
+  for (const int n : sizes) {
+    cip::GasSolver s(cip::GasGrid::from_box(n, n, -1, 1, -1, 1), eos);
+    const double c = courant > 0 ? courant : cip::recommended_courant(s.options().transport);
+    s.initialise([&](double x, double y) {
+      const bool in = x * x + y * y < 0.16;
+      const double rho = in ? 1.0 : 0.125, p = in ? 1.0 : 0.1;
+      return cip::GasPoint{rho, eos.internal_energy(rho, p), 0.0, 0.0};
+    });
+    long steps = 0;
+    const auto t0 = Clock::now();
+    while (s.time() < 0.25 * (1 - 1e-12)) {  // as tests/support/gas_cases.hpp run_to()
+      const double rate = s.max_signal_rate();
+      if (!std::isfinite(rate)) throw std::runtime_error("unstable: " + s.describe_invalid_cell());
+      s.step(std::fmin(c / rate, 0.25 - s.time()));
+      ++steps;
+    }
+    synchronize();
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const cip::HostGasFields h = s.to_host();
+    std::printf("%6d %8.3f %7ld %10.3f %14.4e %12.4e\n", n, c, steps, seconds,
+                static_cast<double>(n) * n * steps / seconds, density_l1(h.rho, n, ref));
+    std::fflush(stdout);
+  }
+  return 0;
+}
