@@ -490,10 +490,7 @@ void RockSolver::list_free_pairs() {
   detail::RockArrays& a = *a_;
   const detail::ContactPairsArrays& p = a.pairs;
   const int vertices = static_cast<int>(a.vertex_joint_offset.size()) - 1;
-  if (joints_ > 0)  // the bonds as the joints now stand (a restart or break_joints() may have changed them)
-    for_each_index("fdem.vertex_bonds", vertices,
-                   VertexBondKernel{device_ptr(a.vertex_joint_offset), device_ptr(a.vertex_joints),
-                                    device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
+  update_vertex_bonds();  // the bonds as the joints now stand (a restart or break_joints() may have changed them)
   a.joint_broken_listed = a.joints.broken;
   a.vertex_bonded_listed = a.vertex_bonded;
   const int* bond = device_ptr(p.bond);
@@ -598,16 +595,21 @@ void RockSolver::joint_forces() {
                    JointForceKernel{a.nodes.read(), a.joint_params.view(), a.joints.view(), a.edges.view()});
 }
 
+void RockSolver::update_vertex_bonds() {
+  detail::RockArrays& a = *a_;
+  if (joints_ > 0)
+    for_each_index("fdem.vertex_bonds", static_cast<index_t>(a.vertex_joint_offset.size() - 1),
+                   VertexBondKernel{device_ptr(a.vertex_joint_offset), device_ptr(a.vertex_joints),
+                                    device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
+}
+
 // Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction. Each pair once (one thread a
 // pair), then each triangle gathers its side of its pairs.
 void RockSolver::contact_forces(double dt) {
   if (!options_.contact) return;
   detail::RockArrays& a = *a_;
   const double penalty = options_.contact_penalty_factor * material_.youngs_modulus;
-  if (joints_ > 0)  // which mesh vertices still have all their joints intact (the joints of this step included)
-    for_each_index("fdem.vertex_bonds", static_cast<index_t>(a.vertex_joint_offset.size() - 1),
-                   VertexBondKernel{device_ptr(a.vertex_joint_offset), device_ptr(a.vertex_joints),
-                                    device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
+  update_vertex_bonds();  // the joints of this step included
   const ContactPairKernel pair{a.nodes.read(),
                                a.node_params.view(),
                                device_ptr(a.joints.broken),

@@ -186,6 +186,7 @@ class RockSolver {
  private:
   void build_contact_pairs();  //!< pair numbering from the candidate lists (rebuild, checkpoint read)
   void list_free_pairs();      //!< contact's work lists from the pairs and the joints' state (build_contact_pairs)
+  void update_vertex_bonds();  //!< which mesh vertices still have all their joints intact (VertexBondKernel)
 
   RockMaterial material_;
   RockOptions options_;
