@@ -41,6 +41,28 @@ double density_l1(const std::vector<double>& rho, int n, const test::RadialProfi
   return sum / (static_cast<double>(n) * n);
 }
 
+//! The density L1 split over rings of the given width in r (each ring's share of the whole domain's L1), printed
+//! with the ring's signed mean error: where along the radius the error lies (shock, contact, rarefaction).
+void print_l1_rings(const std::vector<double>& rho, int n, const test::RadialProfile& ref, double width) {
+  const double h = 2.0 / n;
+  const int rings = static_cast<int>(std::ceil(std::sqrt(2.0) / width));
+  std::vector<double> abs_sum(rings, 0.0), signed_sum(rings, 0.0), cells(rings, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double r = std::hypot(-1 + (i + 0.5) * h, -1 + (j + 0.5) * h);
+      const int k = std::min(rings - 1, static_cast<int>(r / width));
+      const double e = rho[static_cast<size_t>(j) * n + i] - ref.density_at(r);
+      abs_sum[k] += std::fabs(e);
+      signed_sum[k] += e;
+      cells[k] += 1;
+    }
+  std::printf("  ring [m]       L1 share  mean error  exact density at mid-ring\n");
+  for (int k = 0; k < rings; ++k)
+    if (cells[k] > 0)
+      std::printf("  %.2f-%.2f  %10.3e  %+10.3e  %8.4f\n", k * width, (k + 1) * width,
+                  abs_sum[k] / (static_cast<double>(n) * n), signed_sum[k] / cells[k], ref.density_at((k + 0.5) * width));
+}
+
 //! The internalField of an OpenFOAM ASCII volScalarField ("nonuniform List<scalar> N ( v0 v1 ... )").
 std::vector<double> read_openfoam_field(const std::string& path) {
   std::ifstream in(path);
@@ -66,6 +88,7 @@ int main(int argc, char** argv) {
   double courant = 0;  // 0: the solver's recommended number for its transport
   std::string field_path;
   int field_n = 0;
+  double ring_width = 0;  // 0: no split
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--sizes=", 0) == 0) {
@@ -74,12 +97,21 @@ int main(int argc, char** argv) {
       courant = std::stod(arg.substr(10));
     } else if (arg.rfind("--openfoam-rho=", 0) == 0) {
       field_path = arg.substr(15);
+    } else if (arg == "--rings") {
+      ring_width = 0.05;
+    } else if (arg.rfind("--rings=", 0) == 0) {
+      ring_width = std::stod(arg.substr(8));
+      if (!(ring_width > 0)) {
+        std::fprintf(stderr, "--rings=%s: the ring width must be positive\n", arg.substr(8).c_str());
+        return 2;
+      }
     } else if (arg.rfind("--n=", 0) == 0) {
       field_n = std::stoi(arg.substr(4));
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--sizes=100,200,...] [--courant=C]\n"
-                   "       %s --openfoam-rho=CASE/TIME/rho --n=N   (L1 of an N x N field over [-1, 1]^2)\n",
+                   "usage: %s [--sizes=100,200,...] [--courant=C] [--rings[=W]]\n"
+                   "       %s --openfoam-rho=CASE/TIME/rho --n=N [--rings[=W]]   (L1 of an N x N field over [-1, 1]^2)\n"
+                   "--rings[=W]: the L1 split over rings of width W in radius (default 0.05)\n",
                    argv[0], argv[0]);
       return 2;
     }
@@ -93,6 +125,7 @@ int main(int argc, char** argv) {
     }
     std::printf("field %s, %d x %d cells: density L1 %.4e\n", field_path.c_str(), field_n, field_n,
                 density_l1(rho, field_n, ref));
+    if (ring_width > 0) print_l1_rings(rho, field_n, ref, ring_width);
     return 0;
   }
   const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);
@@ -114,6 +147,7 @@ int main(int argc, char** argv) {
     const cip::HostGasFields h = s.to_host();
     std::printf("%6d %8.3f %7lld %10.3f %14.4e %12.4e\n", n, c, steps, seconds,
                 static_cast<double>(n) * n * steps / seconds, density_l1(h.rho, n, ref));
+    if (ring_width > 0) print_l1_rings(h.rho, n, ref, ring_width);
     std::fflush(stdout);
   }
   return 0;

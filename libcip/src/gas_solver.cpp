@@ -225,7 +225,9 @@ void GasSolver::step(double dt) {
   //    the previous step, or apply_boundaries() after an outside write to state() filled them.
   for_each_cell("cip.pressure", 0, g.nx, 0, g.ny,
                 PressureKernel{n, material_fields(), active, P, materials_, options_.viscosity.linear,
-                               options_.viscosity.quadratic});
+                               options_.viscosity.quadratic,
+                               options_.pressure_predictor && options_.transport == Transport::conservative ? 0.5 * dt : 0.0,
+                               g.dx, g.dy});
   for_each_index("cip.pressure.ghosts", 2 * static_cast<index_t>(g.nx + g.ny),
                  PressureGhostKernel{P, g.nx, g.ny, options_.boundaries});
   // 2. Non-advection phase: face velocities, then density and energy (paper eqs. 1-3).

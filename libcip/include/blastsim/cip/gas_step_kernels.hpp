@@ -26,7 +26,8 @@ BLAST_HD inline void store_point(const CipFieldView& F, int i, int j, const CipP
   F.gy(i, j) = p.gy;
 }
 
-//! P = p + q at the cell centres (paper eqs. 4-5). Inactive cells get q = 0.
+//! P = p + q at the cell centres (paper eqs. 4-5), plus, with the pressure predictor (half_dt > 0), the
+//! lagged-work term lagged_work_pressure(). Inactive cells get P = p.
 struct PressureKernel {
   GasStateReadView s;
   MaterialReadView m;
@@ -34,12 +35,21 @@ struct PressureKernel {
   Field2D<double> P;
   GasMaterials mat;
   double c1, c2;
+  double half_dt = 0;  //!< dt / 2 [s] with the pressure predictor, 0 without
+  double dx = 1, dy = 1;
   BLAST_HD void operator()(int i, int j) const {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
     const double dU = velocity_jump(s.u.f(i, j), s.u.f(i + 1, j), s.v.f(i, j), s.v.f(i, j + 1));
     const PressureSound ps = cell_pressure_and_sound_speed(mat, m, rho, e, i, j);
-    const double q = active(i, j) ? artificial_viscosity(rho, ps.c, dU, c1, c2) : 0.0;
-    P(i, j) = ps.p + q;
+    const bool on = active(i, j);
+    const double q = on ? artificial_viscosity(rho, ps.c, dU, c1, c2) : 0.0;
+    double Pij = ps.p + q;
+    if (half_dt > 0 && on) {
+      const double div = (s.u.f(i + 1, j) - s.u.f(i, j)) / dx + (s.v.f(i, j + 1) - s.v.f(i, j)) / dy;
+      Pij += lagged_work_pressure(mat.two ? mat.mixture_gruneisen(m.alpha(i, j)) : mat.air.gruneisen(), ps.p, div,
+                                  half_dt);
+    }
+    P(i, j) = Pij;
   }
 };
 

@@ -60,6 +60,12 @@ struct GasSolverOptions {
   //! update, advection): as one kernel a group (for_each_cell_fused()) or one by one. The bytes are the same
   //! either way (tests/cip/test_fused_step.cpp, G12); only the speed differs.
   KernelFusion fusion = KernelFusion::backend_default;
+  //! Conservative transport only: the pressure of the non-advection phase (momentum and work) carries the term
+  //! -(dt/2) Gamma p div(u^n) that cancels the lag of the work done with the old velocities, so sound is neither
+  //! amplified nor damped by the time stepping (docs/gas-solver.md "Time centring of the pressure"). false: the
+  //! step without it (the default until the validation at the new setting is done), which amplifies short sound
+  //! waves unless the linear viscosity damps them.
+  bool pressure_predictor = false;
 };
 
 //! Primitive state at a point, used to initialise the grid.
