@@ -103,8 +103,9 @@ BLAST_HD inline double artificial_viscosity(double density, double sound_speed, 
 //! The pressure predictor's term [Pa]: -(dt/2) Gamma p div(u^n). The conservative step moves the density and
 //! rho e with the new face velocities u* but does the pressure work with the mean of div(u^n) and div(u*)
 //! (which keeps internal plus kinetic energy exact); the part of the work done with the old velocity lags by
-//! half a step and makes the scheme amplify sound, at the rate (Gamma p / (2 rho c^2)) (c dt k)^2 per step for a
-//! wave of number k (docs/gas-solver.md "Time centring of the pressure"). The same pressure taken that half step
+//! half a step and makes the scheme amplify sound: the amplification matrix of a wave of discrete number k' has
+//! the determinant 1 + w (c dt k')^2, w = Gamma p / (2 rho c^2), so its amplitude grows by about w (c dt k')^2 / 2
+//! a step (docs/gas-solver.md "Time centring of the pressure"). The same pressure taken that half step
 //! ahead for this part, in the momentum and the work alike, cancels the amplification exactly for linear sound
 //! and leaves the energy identity as it was. gamma_g: Gruneisen coefficient d p / d(rho e) [-]; div [1/s].
 BLAST_HD inline double lagged_work_pressure(double gamma_g, double p, double div, double half_dt) {

@@ -46,8 +46,9 @@ struct PressureKernel {
     double Pij = ps.p + q;
     if (half_dt > 0 && on) {
       const double div = (s.u.f(i + 1, j) - s.u.f(i, j)) / dx + (s.v.f(i, j + 1) - s.v.f(i, j)) / dy;
-      Pij += lagged_work_pressure(mat.two ? mat.mixture_gruneisen(m.alpha(i, j)) : mat.air.gruneisen(), ps.p, div,
-                                  half_dt);
+      const double alpha = mat.two ? m.alpha(i, j) : 0.0;  // below kMinFraction pressure() takes pure air too
+      Pij += lagged_work_pressure(alpha > GasMaterials::kMinFraction ? mat.mixture_gruneisen(alpha) : mat.air.gruneisen(),
+                                  ps.p, div, half_dt);
     }
     P(i, j) = Pij;
   }
