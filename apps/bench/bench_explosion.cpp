@@ -12,6 +12,7 @@
 #include "gas_cases.hpp"
 #include "radial_reference.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,31 +32,36 @@ test::RadialProfile reference() {
                             [](double r) { return r < 0.4 ? 1.0 : 0.1; });
 }
 
-//! Mean |rho - rho_ref| over the n x n cells of [-1, 1]^2, rho[j n + i] at cell (i, j) (i along x).
-double density_l1(const std::vector<double>& rho, int n, const test::RadialProfile& ref) {
+//! f(r, rho - rho_ref(r)) for each of the n x n cells of [-1, 1]^2 (rho[j n + i] at cell (i, j), i along x; r the
+//! cell centre's radius), in row order.
+template <class F>
+void for_each_cell_error(const std::vector<double>& rho, int n, const test::RadialProfile& ref, F f) {
   const double h = 2.0 / n;
-  double sum = 0;
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      sum += std::fabs(rho[static_cast<size_t>(j) * n + i] - ref.density_at(std::hypot(-1 + (i + 0.5) * h, -1 + (j + 0.5) * h)));
+    for (int i = 0; i < n; ++i) {
+      const double r = std::hypot(-1 + (i + 0.5) * h, -1 + (j + 0.5) * h);
+      f(r, rho[static_cast<size_t>(j) * n + i] - ref.density_at(r));
+    }
+}
+
+//! Mean |rho - rho_ref| over the n x n cells of [-1, 1]^2.
+double density_l1(const std::vector<double>& rho, int n, const test::RadialProfile& ref) {
+  double sum = 0;
+  for_each_cell_error(rho, n, ref, [&](double, double e) { sum += std::fabs(e); });
   return sum / (static_cast<double>(n) * n);
 }
 
 //! The density L1 split over rings of the given width in r (each ring's share of the whole domain's L1), printed
 //! with the ring's signed mean error: where along the radius the error lies (shock, contact, rarefaction).
 void print_l1_rings(const std::vector<double>& rho, int n, const test::RadialProfile& ref, double width) {
-  const double h = 2.0 / n;
   const int rings = static_cast<int>(std::ceil(std::sqrt(2.0) / width));
   std::vector<double> abs_sum(rings, 0.0), signed_sum(rings, 0.0), cells(rings, 0.0);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const double r = std::hypot(-1 + (i + 0.5) * h, -1 + (j + 0.5) * h);
-      const int k = std::min(rings - 1, static_cast<int>(r / width));
-      const double e = rho[static_cast<size_t>(j) * n + i] - ref.density_at(r);
-      abs_sum[k] += std::fabs(e);
-      signed_sum[k] += e;
-      cells[k] += 1;
-    }
+  for_each_cell_error(rho, n, ref, [&](double r, double e) {
+    const int k = std::min(rings - 1, static_cast<int>(r / width));
+    abs_sum[k] += std::fabs(e);
+    signed_sum[k] += e;
+    cells[k] += 1;
+  });
   std::printf("  ring [m]       L1 share  mean error  exact density at mid-ring\n");
   for (int k = 0; k < rings; ++k)
     if (cells[k] > 0)

@@ -39,13 +39,14 @@ struct PressureKernel {
   double dx = 1, dy = 1;
   BLAST_HD void operator()(int i, int j) const {
     const double rho = s.rho.f(i, j), e = s.e.f(i, j);
-    const double dU = velocity_jump(s.u.f(i, j), s.u.f(i + 1, j), s.v.f(i, j), s.v.f(i, j + 1));
+    const double du = s.u.f(i + 1, j) - s.u.f(i, j), dv = s.v.f(i, j + 1) - s.v.f(i, j);
+    const double dU = du + dv;  // velocity_jump() of eq. (5)
     const PressureSound ps = cell_pressure_and_sound_speed(mat, m, rho, e, i, j);
     const bool on = active(i, j);
     const double q = on ? artificial_viscosity(rho, ps.c, dU, c1, c2) : 0.0;
     double Pij = ps.p + q;
     if (half_dt > 0 && on) {
-      const double div = (s.u.f(i + 1, j) - s.u.f(i, j)) / dx + (s.v.f(i, j + 1) - s.v.f(i, j)) / dy;
+      const double div = du / dx + dv / dy;
       const double alpha = mat.two ? m.alpha(i, j) : 0.0;  // below kMinFraction pressure() takes pure air too
       Pij += lagged_work_pressure(alpha > GasMaterials::kMinFraction ? mat.mixture_gruneisen(alpha) : mat.air.gruneisen(),
                                   ps.p, div, half_dt);
