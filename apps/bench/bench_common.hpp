@@ -33,6 +33,13 @@ inline std::vector<int> parse_int_list(const std::string& text) {
   return out;
 }
 
+//! "0.25,0.5" -> {0.25, 0.5}.
+inline std::vector<double> parse_double_list(const std::string& text) {
+  std::vector<double> out;
+  for (const std::string& s : split_list(text)) out.push_back(std::stod(s));
+  return out;
+}
+
 //! Host threads of the OpenMP backend (1 for CUDA).
 inline int thread_count() {
 #if defined(_OPENMP)

@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
   std::string field_path;
   int field_n = 0;
   double ring_width = 0;  // 0: no split
+  cip::GasSolverOptions options;  // the solver's defaults unless --predictor / --viscosity say otherwise
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--sizes=", 0) == 0) {
@@ -111,13 +112,24 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "--rings=%s: the ring width must be positive\n", arg.substr(8).c_str());
         return 2;
       }
+    } else if (arg == "--predictor") {
+      options.pressure_predictor = true;
+    } else if (arg.rfind("--viscosity=", 0) == 0) {
+      const std::vector<double> c = bench::parse_double_list(arg.substr(12));
+      if (c.size() != 2 || !(c[0] >= 0) || !(c[1] >= 0)) {
+        std::fprintf(stderr, "--viscosity=%s: two coefficients c1,c2 >= 0 are allowed\n", arg.substr(12).c_str());
+        return 2;
+      }
+      options.viscosity = cip::ArtificialViscosity{c[0], c[1]};
     } else if (arg.rfind("--n=", 0) == 0) {
       field_n = std::stoi(arg.substr(4));
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--sizes=100,200,...] [--courant=C] [--rings[=W]]\n"
+                   "usage: %s [--sizes=100,200,...] [--courant=C] [--rings[=W]] [--predictor] [--viscosity=C1,C2]\n"
                    "       %s --openfoam-rho=CASE/TIME/rho --n=N [--rings[=W]]   (L1 of an N x N field over [-1, 1]^2)\n"
-                   "--rings[=W]: the L1 split over rings of width W in radius (default 0.05)\n",
+                   "--rings[=W]: the L1 split over rings of width W in radius (default 0.05)\n"
+                   "--predictor: gas.pressure_predictor = true; --viscosity=C1,C2: the artificial viscosity's\n"
+                   "  linear and quadratic coefficients (default: the solver's)\n",
                    argv[0], argv[0]);
       return 2;
     }
@@ -135,10 +147,13 @@ int main(int argc, char** argv) {
     return 0;
   }
   const cip::EquationOfState eos = cip::EquationOfState::ideal(1.4);
-  std::printf("backend %s, threads %d; Toro's cylindrical explosion to t = 0.25\n", backend_name(), bench::thread_count());
+  std::printf("backend %s, threads %d; Toro's cylindrical explosion to t = 0.25; viscosity c1 %g c2 %g, pressure "
+              "predictor %s\n",
+              backend_name(), bench::thread_count(), options.viscosity.linear, options.viscosity.quadratic,
+              options.pressure_predictor ? "on" : "off");
   std::printf("%6s %8s %7s %10s %14s %12s\n", "n", "courant", "steps", "seconds", "cell upd./s", "density L1");
   for (const int n : sizes) {
-    cip::GasSolver s(cip::GasGrid::from_box(n, n, -1, 1, -1, 1), eos);
+    cip::GasSolver s(cip::GasGrid::from_box(n, n, -1, 1, -1, 1), eos, options);
     const double c = courant > 0 ? courant : cip::recommended_courant(s.options().transport);
     s.initialise([&](double x, double y) {
       const bool in = x * x + y * y < 0.16;
