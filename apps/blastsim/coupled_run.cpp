@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <optional>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -282,18 +283,21 @@ class ChargeFiles {
 
 //! The case as the checkpoint records it: the resolved input, less the keys a restart may change, and without
 //! the echo's "(default)" marks (a default written out is the same input). Keys added since checkpoints were
-//! first written, whose default keeps the earlier step byte for byte, are recorded only when not at their
-//! default, so a checkpoint of an earlier build still restarts (and the file keeps its earlier bytes).
+//! first written are recorded only when their value differs from the one that gives the earlier builds' step
+//! (later_keys), so a checkpoint of an earlier build restarts when the input asks for that step, and is refused,
+//! naming the key, when it does not.
 std::string checkpoint_case_text(const Case& c) {
   std::string text;
   const std::set<std::string> may_change{"time.end", "time.max_steps", "output.progress_interval", "output.directory"};
-  const std::set<std::string> later_keys{"gas.pressure_predictor"};
+  const std::map<std::string, std::string> later_keys{{"gas.pressure_predictor", "false"}};
   const std::string mark = kDefaultMark;
   for (const EchoLine& line : c.echo) {
     if (may_change.count(line.key)) continue;
     const bool marked = line.text.size() >= mark.size() && line.text.compare(line.text.size() - mark.size(), mark.size(), mark) == 0;
-    if (marked && later_keys.count(line.key)) continue;
-    text += (marked ? line.text.substr(0, line.text.size() - mark.size()) : line.text) + "\n";
+    const std::string written = marked ? line.text.substr(0, line.text.size() - mark.size()) : line.text;
+    if (const auto k = later_keys.find(line.key); k != later_keys.end() && written == line.key + " = " + k->second)
+      continue;
+    text += written + "\n";
   }
   return text;
 }

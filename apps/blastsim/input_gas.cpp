@@ -127,7 +127,7 @@ void read_gas(TableReader& root, Case& c) {
   const cip::ArtificialViscosity q = cip::recommended_viscosity(g.solver.transport);
   g.solver.viscosity.linear = gas.number("viscosity_linear", "", Range::non_negative(), q.linear);
   g.solver.viscosity.quadratic = gas.number("viscosity_quadratic", "", Range::non_negative(), q.quadratic);
-  g.solver.pressure_predictor = gas.boolean("pressure_predictor", false);
+  g.solver.pressure_predictor = gas.boolean("pressure_predictor", true);
   g.solver.limiter =
       gas.text("limiter", {"minmax", "none"}, std::string("minmax")) == "none" ? cip::Limiter::none : cip::Limiter::minmax;
   TableReader bc = gas.table("boundary");

@@ -60,8 +60,9 @@ TEST_CASE("A valid case is read with its defaults and echoed with units", "[app]
   CHECK_THAT(c.gas.grid.dx, WithinRel(0.05, 1e-14));
   CHECK(c.gas.courant == cip::kConservativeCourant);  // the conservative transport's recommended number
   CHECK(c.gas.solver.transport == cip::Transport::conservative);
-  CHECK(c.gas.solver.viscosity.linear == 0.5);  // the conservative transport's coefficients
-  CHECK(c.gas.solver.viscosity.quadratic == 1.0);
+  CHECK(c.gas.solver.viscosity.linear == 0.25);  // the conservative transport's coefficients (with the predictor)
+  CHECK(c.gas.solver.viscosity.quadratic == 0.5);
+  CHECK(c.gas.solver.pressure_predictor);
   const app::Case paper = read(kValid, {"gas.transport=paper"});
   CHECK(paper.gas.solver.transport == cip::Transport::paper);
   CHECK(paper.gas.solver.viscosity.linear == 1.0);  // the paper's transport's coefficients

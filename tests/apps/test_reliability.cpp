@@ -89,7 +89,7 @@ TEST_CASE("Reliability: a restart changes nothing until it is accepted, and a fi
   const auto finished = folder_bytes(out);
   REQUIRE(finished.count("charges.csv") == 1);
   // The same end: nothing to do, every file as it was (a default written out is the same input).
-  Run r = run_driver(input, {"--restart", "gas.viscosity_linear=0.5", "crack_gas.enabled=false"}, "rr_same");
+  Run r = run_driver(input, {"--restart", "gas.viscosity_linear=0.25", "crack_gas.enabled=false"}, "rr_same");
   INFO(r.err);
   CHECK(r.status == 0);
   CHECK(folder_bytes(out) == finished);

@@ -12,15 +12,16 @@
 namespace blastsim::cip {
 
 //! Coefficients of the artificial viscosity, paper eq. (4). The paper does not give them. The defaults
-//! c1 = 0.5, c2 = 1 suit the (default) conservative transport, which puts shocks in the right place whatever
-//! the coefficients: less viscosity smears shocks less, more damps the oscillations behind a slowly moving
-//! shock (Toro's test 5) and the start-up error behind Sod's contact; 0.5 and 1 keep every gas check
-//! (docs/gas-solver.md, G8-G9), where 0.25 and 0.5 let Sod's L1 converge at order 0.78 only. The paper's
-//! non-conservative transport needs c1 = 1, c2 = 2: with 0.5 and 1 it runs the shock of the 277:1 jump
-//! 2.6 % slow, with 1 and 2 0.75 % (recommended_viscosity()).
+//! c1 = 0.25, c2 = 0.5 suit the (default) conservative transport with the pressure predictor, which puts shocks
+//! in the right place whatever the coefficients: less viscosity smears shocks less (the linear term sets the
+//! width of a weak shock), more damps the oscillations behind a slowly moving shock (Toro's test 5) and the
+//! start-up error behind Sod's contact. Without the predictor the step amplifies short sound waves and needs
+//! c1 = 0.5 to damp them (docs/gas-solver.md "Time centring of the pressure"; docs/performance.md "Where the
+//! gas's error lies"). The paper's non-conservative transport needs c1 = 1, c2 = 2: with 0.5 and 1 it runs the
+//! shock of the 277:1 jump 2.6 % slow, with 1 and 2 0.75 % (recommended_viscosity()).
 struct ArtificialViscosity {
-  double linear = 0.5;     //!< c1 [-]
-  double quadratic = 1.0;  //!< c2 [-]
+  double linear = 0.25;    //!< c1 [-]
+  double quadratic = 0.5;  //!< c2 [-]
 };
 
 //! How values are carried by the flow (the advection phase).
@@ -31,7 +32,7 @@ enum class Transport {
 
 //! The viscosity coefficients measured to suit each transport (docs/gas-solver.md).
 inline ArtificialViscosity recommended_viscosity(Transport t) {
-  return t == Transport::paper ? ArtificialViscosity{1.0, 2.0} : ArtificialViscosity{0.5, 1.0};
+  return t == Transport::paper ? ArtificialViscosity{1.0, 2.0} : ArtificialViscosity{0.25, 0.5};
 }
 
 //! The paper's Courant number: dt = 0.1 / (largest signal rate).
@@ -63,9 +64,9 @@ struct GasSolverOptions {
   //! Conservative transport only: the pressure of the non-advection phase (momentum and work) carries the term
   //! -(dt/2) Gamma p div(u^n) that cancels the lag of the work done with the old velocities, so sound is neither
   //! amplified nor damped by the time stepping (docs/gas-solver.md "Time centring of the pressure"). false: the
-  //! step without it (the default until the validation at the new setting is done), which amplifies short sound
-  //! waves unless the linear viscosity damps them.
-  bool pressure_predictor = false;
+  //! step of earlier builds (CHANGELOG.md), which amplifies short sound waves unless the linear viscosity damps
+  //! them (c1 = 0.5 did).
+  bool pressure_predictor = true;
 };
 
 //! Primitive state at a point, used to initialise the grid.
