@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
   std::string field_path;
   int field_n = 0;
   double ring_width = 0;  // 0: no split
-  cip::GasSolverOptions options;  // the solver's defaults unless --predictor / --viscosity say otherwise
+  cip::GasSolverOptions options;  // the solver's defaults unless --predictor= / --viscosity= say otherwise
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg.rfind("--sizes=", 0) == 0) {
@@ -112,8 +112,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "--rings=%s: the ring width must be positive\n", arg.substr(8).c_str());
         return 2;
       }
-    } else if (arg == "--predictor") {
-      options.pressure_predictor = true;
+    } else if (arg == "--predictor=on" || arg == "--predictor=off") {
+      options.pressure_predictor = arg == "--predictor=on";
     } else if (arg.rfind("--viscosity=", 0) == 0) {
       const std::vector<double> c = bench::parse_double_list(arg.substr(12));
       if (c.size() != 2 || !(c[0] >= 0) || !(c[1] >= 0)) {
@@ -125,11 +125,11 @@ int main(int argc, char** argv) {
       field_n = std::stoi(arg.substr(4));
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--sizes=100,200,...] [--courant=C] [--rings[=W]] [--predictor] [--viscosity=C1,C2]\n"
+                   "usage: %s [--sizes=100,200,...] [--courant=C] [--rings[=W]] [--predictor=on|off] [--viscosity=C1,C2]\n"
                    "       %s --openfoam-rho=CASE/TIME/rho --n=N [--rings[=W]]   (L1 of an N x N field over [-1, 1]^2)\n"
                    "--rings[=W]: the L1 split over rings of width W in radius (default 0.05)\n"
-                   "--predictor: gas.pressure_predictor = true; --viscosity=C1,C2: the artificial viscosity's\n"
-                   "  linear and quadratic coefficients (default: the solver's)\n",
+                   "--predictor=on|off: gas.pressure_predictor; --viscosity=C1,C2: the artificial viscosity's linear and\n"
+                   "  quadratic coefficients (default: the solver's: on, 0.25,0.5)\n",
                    argv[0], argv[0]);
       return 2;
     }

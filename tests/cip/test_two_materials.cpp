@@ -267,7 +267,7 @@ TEST_CASE("G11 closed box with a products disc: each material's mass and the ene
   const double dE = t1.total_energy() / t0.total_energy() - 1;
   std::printf("G11 closed box%s, 200 steps: total mass %.1e, products mass %.1e, energy %.1e relative change; "
               "energy added by the positivity bound %.1e J/m\n",
-              predictor ? " with the pressure predictor" : "", dm, dm1, dE, s.positivity_energy());
+              predictor ? " with the pressure predictor" : " without the pressure predictor", dm, dm1, dE, s.positivity_energy());
   CHECK(std::fabs(dm) <= 1e-12);
   CHECK(std::fabs(dm1) <= 1e-12);
   CHECK(std::fabs(dE - s.positivity_energy() / t0.total_energy()) <= 1e-12);

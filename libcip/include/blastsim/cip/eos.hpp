@@ -204,6 +204,10 @@ struct GasMaterials {
     if (!two) return air.gruneisen();
     return 1.0 / (alpha / products.gruneisen() + (1.0 - alpha) / air.gruneisen());
   }
+  //! The Gruneisen coefficient of a cell's pressure(): the mixture's with products, the air's below kMinFraction.
+  BLAST_HD double cell_gruneisen(double alpha) const {
+    return !two || !(alpha > kMinFraction) ? air.gruneisen() : mixture_gruneisen(alpha);
+  }
   //! Internal energy per unit volume rho e [J/m3] of a mixture at density rho [kg/m3], pressure p [Pa],
   //! products volume fraction alpha [-] and mass fraction Y [-] (the inverse of pressure(); pure air below
   //! kMinFraction).

@@ -47,9 +47,7 @@ struct PressureKernel {
     double Pij = ps.p + q;
     if (half_dt > 0 && on) {
       const double div = du / dx + dv / dy;
-      const double alpha = mat.two ? m.alpha(i, j) : 0.0;  // below kMinFraction pressure() takes pure air too
-      Pij += lagged_work_pressure(alpha > GasMaterials::kMinFraction ? mat.mixture_gruneisen(alpha) : mat.air.gruneisen(),
-                                  ps.p, div, half_dt);
+      Pij += lagged_work_pressure(mat.cell_gruneisen(mat.two ? m.alpha(i, j) : 0.0), ps.p, div, half_dt);
     }
     P(i, j) = Pij;
   }
