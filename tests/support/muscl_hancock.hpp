@@ -40,6 +40,8 @@ class MusclHancock {
 
   //! Cell-averaged density of cell i.
   double density(int i) const { return U_[i + 2][0]; }
+  //! Pressure [Pa] of cell i, from its conserved averages.
+  double pressure(int i) const { return primitive(U_[i + 2]).p; }
   //! Specific internal energy [J/kg] of cell i, from its conserved averages.
   double internal_energy(int i) const {
     const Primitive w = primitive(U_[i + 2]);
