@@ -7,6 +7,7 @@
 
 #include "blastsim/ibm/budget.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -46,11 +47,16 @@ TEST_CASE("C4 crack gas: grid + crack gas mass kept to round-off while cracks gr
   CHECK(std::fabs(b.residual / d.gas_work_on_rock) < 0.05);
 }
 
-TEST_CASE("C5 crack gas: a rigid crack filled from a hole settles to the lumped uniform state", "[long][ibm][crack][C5]") {
+TEST_CASE("C5 crack gas: a rigid crack filled from a hole oscillates about the lumped uniform state",
+          "[long][ibm][crack][C5]") {
   // A 30 mm pre-cut crack from the wall of a 15 mm hole in rock held still, aperture 1 mm (residual; rigid
-  // walls do not open it), no friction. Gas moves from the hole into the empty crack until both hold one
-  // state: that of the same mass and energy in the sum of their volumes, p = (gamma - 1) E / V.
-  const double a = 0.015, L = 0.03;
+  // walls do not open it), no friction. Gas moves from the hole into the empty crack; the mean state about
+  // which hole and crack then oscillate is that of the same mass and energy in the sum of their volumes,
+  // p = (gamma - 1) E / V. Without friction and crack viscosity only the grid's artificial viscosity damps the
+  // sloshing between hole and crack (period about 0.23 ms, crack pressures +-5 % about the mean at 1.3 ms), so
+  // the state at one instant depends on the phase of the oscillation; asserted are the time means over the
+  // last 0.5 ms (about two periods).
+  const double a = 0.015, L = 0.03, t_mean = 1.0e-3, t_end = 1.5e-3;
   HoleInRock c(96, 0.12, 0.1, a, 0.004, test::intact_rock(), {fdem::Segment{{a, 0}, {a + L, 0}}});
   std::vector<int> all(c.rock.node_count());
   for (int k = 0; k < c.rock.node_count(); ++k) all[k] = k;
@@ -62,7 +68,7 @@ TEST_CASE("C5 crack gas: a rigid crack filled from a hole settles to the lumped 
   opt.residual_aperture = 1e-3, opt.friction_factor = 0, opt.viscosity = 0;
   c.coupler.enable_crack_gas(opt);
   const cip::CellRegion hole = cip::CellRegion::circle(0, 0, a + 2 * c.gas.grid().dx);
-  auto hole_volume = [&] {
+  const double hole_volume = [&] {  // the rock is held, so the hole's cells stay the same
     const cip::HostGasFields h = c.gas.to_host();
     const cip::GasGrid g = c.gas.grid();
     double v = 0;
@@ -70,11 +76,23 @@ TEST_CASE("C5 crack gas: a rigid crack filled from a hole settles to the lumped 
       for (int i = 0; i < g.nx; ++i)
         if (h.active[static_cast<size_t>(j) * g.nx + i] && hole.contains(g.cell_x(i), g.cell_y(j))) v += g.cell_area();
     return v;
-  };
-  c.run_to(1.5e-3, true);  // the gas at its Courant limit, the rock (held) subcycled
+  }();
+  auto hole_pressure = [&] { return 0.4 * c.coupler.gas_in(hole).internal_energy / hole_volume; };
+  c.run_to(t_mean, true);  // the gas at its Courant limit, the rock (held) subcycled
+  std::vector<double> crack_mean(crack.size(), 0.0);
+  double hole_mean = 0, window = 0;
+  while (c.gas.time() < t_end - 1e-12) {
+    const double dt = c.step_towards(t_end, true);
+    const std::vector<ibm::ChannelPrimitive> cp = c.coupler.crack_gas()->crack_gas().primitives();
+    for (size_t k = 0; k < crack.size(); ++k) crack_mean[k] += dt * cp[crack[k]].p;
+    hole_mean += dt * hole_pressure();
+    window += dt;
+  }
+  for (double& p : crack_mean) p /= window;
+  hole_mean /= window;
   const cip::GasTotals hg = c.coupler.gas_in(hole);
   const ibm::CrackGasTotals cg = c.coupler.diagnostics().crack;
-  const double V = hole_volume() + cg.volume, E = hg.total_energy() + cg.energy;
+  const double V = hole_volume + cg.volume, E = hg.total_energy() + cg.energy;
   const double p_uniform = 0.4 * E / V;
   const std::vector<ibm::ChannelPrimitive> cp = c.coupler.crack_gas()->crack_gas().primitives();
   const std::vector<std::uint8_t> kind = c.coupler.crack_gas()->crack_gas().kinds();
@@ -83,14 +101,17 @@ TEST_CASE("C5 crack gas: a rigid crack filled from a hole settles to the lumped 
     REQUIRE(kind[j] == ibm::kSegmentGas);
     p_lo = std::fmin(p_lo, cp[j].p), p_hi = std::fmax(p_hi, cp[j].p);
   }
-  const double p_hole = 0.4 * hg.internal_energy / hole_volume();
-  std::printf("C5: crack volume %.3e of %.3e m2 (%.1f %%), crack mass %.4e kg/m; at 1.5 ms crack pressures %.4f to %.4f "
-              "MPa, hole %.4f MPa, lumped uniform state %.4f MPa (%+.2f %% / %+.2f %% / %+.2f %%)\n",
-              cg.volume, V, 100 * cg.volume / V, cg.mass, 1e-6 * p_lo, 1e-6 * p_hi, 1e-6 * p_hole, 1e-6 * p_uniform,
-              100 * (p_lo / p_uniform - 1), 100 * (p_hi / p_uniform - 1), 100 * (p_hole / p_uniform - 1));
-  CHECK(std::fabs(p_lo / p_uniform - 1) < 0.02);
-  CHECK(std::fabs(p_hi / p_uniform - 1) < 0.02);
-  CHECK(std::fabs(p_hole / p_uniform - 1) < 0.02);
+  const double mean_lo = *std::min_element(crack_mean.begin(), crack_mean.end());
+  const double mean_hi = *std::max_element(crack_mean.begin(), crack_mean.end());
+  std::printf("C5: crack volume %.3e of %.3e m2 (%.1f %%), crack mass %.4e kg/m; lumped uniform state %.4f MPa; mean "
+              "over %.1f to %.1f ms: crack %+.2f %% to %+.2f %%, hole %+.2f %%; at %.1f ms: crack %+.2f %% to %+.2f %%, "
+              "hole %+.2f %%\n",
+              cg.volume, V, 100 * cg.volume / V, cg.mass, 1e-6 * p_uniform, 1e3 * t_mean, 1e3 * t_end,
+              100 * (mean_lo / p_uniform - 1), 100 * (mean_hi / p_uniform - 1), 100 * (hole_mean / p_uniform - 1),
+              1e3 * t_end, 100 * (p_lo / p_uniform - 1), 100 * (p_hi / p_uniform - 1),
+              100 * (hole_pressure() / p_uniform - 1));
+  for (double p : crack_mean) CHECK(std::fabs(p / p_uniform - 1) < 0.02);
+  CHECK(std::fabs(hole_mean / p_uniform - 1) < 0.02);
 }
 
 #endif

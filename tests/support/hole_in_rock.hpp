@@ -57,12 +57,15 @@ struct HoleInRock {
   //! Steps to t: one dt for both solvers, or (subcycle) gas steps at the Courant limit, each filled with as
   //! many rock steps as keep the rock within its stable step.
   void run_to(double t, bool subcycle = false) {
-    while (gas.time() < t - 1e-12) {
-      const double dt = std::fmin(subcycle ? gas.courant_dt(blastsim::test::validation_courant(coupler.courant())) : coupler.stable_dt(blastsim::test::validation_courant(coupler.courant())), t - gas.time());
-      if (!(dt > 0)) FAIL("no stable step at t = " << gas.time() << ": " << gas.describe_invalid_cell());
-      const int substeps = subcycle ? ibm::rock_substeps(dt, 0.9 * rock.stable_dt()) : 1;
-      coupler.step(dt, substeps);
-    }
+    while (gas.time() < t - 1e-12) step_towards(t, subcycle);
+  }
+  //! One coupled step towards t (shortened to land on it); returns its dt [s].
+  double step_towards(double t, bool subcycle = false) {
+    const double dt = std::fmin(subcycle ? gas.courant_dt(blastsim::test::validation_courant(coupler.courant())) : coupler.stable_dt(blastsim::test::validation_courant(coupler.courant())), t - gas.time());
+    if (!(dt > 0)) FAIL("no stable step at t = " << gas.time() << ": " << gas.describe_invalid_cell());
+    const int substeps = subcycle ? ibm::rock_substeps(dt, 0.9 * rock.stable_dt()) : 1;
+    coupler.step(dt, substeps);
+    return dt;
   }
 };
 
