@@ -15,8 +15,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <optional>
 #include <map>
+#include <optional>
 #include <set>
 #include <vector>
 

@@ -158,9 +158,12 @@ struct GasMaterials {
     const double r = m_k / alpha_k;
     return m_k * eos.reference_energy(r) - alpha_k * eos.reference_pressure(r) / eos.gruneisen();
   }
+  //! True when a cell of products volume fraction alpha [-] takes the air's equation of state alone: one-gas
+  //! runs, and alpha at or below kMinFraction (the rule of pressure() and of everything that inverts it).
+  BLAST_HD bool air_only(double alpha) const { return !two || !(alpha > kMinFraction); }
   //! Mixture pressure [Pa] from rho [kg/m3], e [J/kg], alpha [-] and m1 [kg/m3].
   BLAST_HD double pressure(double rho, double e, double alpha, double m1) const {
-    if (!two || !(alpha > kMinFraction)) return air.pressure(rho, e);
+    if (air_only(alpha)) return air.pressure(rho, e);
     const double a2 = 1.0 - alpha;
     const double xi = alpha / products.gruneisen() + a2 / air.gruneisen();
     return (rho * e - offset(products, alpha, m1) - offset(air, a2, rho - m1)) / xi;
@@ -168,7 +171,7 @@ struct GasMaterials {
   //! Mixture sound speed [m/s] of the five-equation model: xi c^2 = sum_k Y_k c_k^2 / Gamma_k (Allaire et al.
   //! 2002, eq. 2.9), c_k at the phase density and the common pressure; NaN for an invalid state.
   BLAST_HD double sound_speed(double rho, double e, double alpha, double m1) const {
-    if (!two || !(alpha > kMinFraction)) return air.sound_speed(rho, e);
+    if (air_only(alpha)) return air.sound_speed(rho, e);
     return mixture_sound_speed(rho, alpha, m1, pressure(rho, e, alpha, m1));
   }
   //! The mixture sound speed of a cell with products (alpha > kMinFraction) whose pressure p [Pa] is known.
@@ -206,13 +209,13 @@ struct GasMaterials {
   }
   //! The Gruneisen coefficient of a cell's pressure(): the mixture's with products, the air's below kMinFraction.
   BLAST_HD double cell_gruneisen(double alpha) const {
-    return !two || !(alpha > kMinFraction) ? air.gruneisen() : mixture_gruneisen(alpha);
+    return air_only(alpha) ? air.gruneisen() : mixture_gruneisen(alpha);
   }
   //! Internal energy per unit volume rho e [J/m3] of a mixture at density rho [kg/m3], pressure p [Pa],
   //! products volume fraction alpha [-] and mass fraction Y [-] (the inverse of pressure(); pure air below
   //! kMinFraction).
   BLAST_HD double internal_energy_density(double rho, double p, double alpha, double Y) const {
-    if (!two || !(alpha > kMinFraction)) return rho * air.internal_energy(rho, p);
+    if (air_only(alpha)) return rho * air.internal_energy(rho, p);
     const double a2 = 1.0 - alpha;
     const double rho1 = Y * rho / alpha, rho2 = a2 > kMinFraction ? (1.0 - Y) * rho / a2 : 0.0;
     return energy_density(p, alpha, rho1, rho2);

@@ -78,7 +78,7 @@ BLAST_HD inline PressureSound cell_pressure_and_sound_speed(const GasMaterials& 
   if (!mat.two) return {mat.air.pressure(rho, e), mat.air.sound_speed(rho, e)};
   const double alpha = m.alpha(i, j), m1 = m.m1(i, j);
   const double p = mat.pressure(rho, e, alpha, m1);
-  return {p, alpha > GasMaterials::kMinFraction ? mat.mixture_sound_speed(rho, alpha, m1, p) : mat.air.sound_speed(rho, e)};
+  return {p, mat.air_only(alpha) ? mat.air.sound_speed(rho, e) : mat.mixture_sound_speed(rho, alpha, m1, p)};
 }
 
 

@@ -373,7 +373,7 @@ struct CellFluxUpdateKernel {
     materials.m1(i, j) = m1 - dt * ((Mx(i + 1, j) - Mx(i, j)) / dx + (My(i, j + 1) - My(i, j)) / dy);
     if (!two) return;
     const double a = materials.alpha(i, j);
-    const double E1 = a > GasMaterials::kMinFraction ? mat.products_energy(mat.pressure(rho, e, a, m1), a, m1) : 0.0;
+    const double E1 = mat.air_only(a) ? 0.0 : mat.products_energy(mat.pressure(rho, e, a, m1), a, m1);
     products_energy(i, j) = E1 - dt * flux_divergence(Px, Py, i, j, dx, dy);
     const double div_a = (Ax(i + 1, j) - Ax(i, j)) / dx + (Ay(i, j + 1) - Ay(i, j)) / dy;
     const double div_u = (Wx(i + 1, j) - Wx(i, j)) / dx + (Wy(i, j + 1) - Wy(i, j)) / dy;
