@@ -6,6 +6,7 @@
 #include "validation_courant.hpp"
 #include "blastsim/core/error.hpp"
 #include "catch.hpp"
+#include "five_equation_hllc.hpp"
 #include "gas_cases.hpp"
 #include "mie_gruneisen_riemann.hpp"
 #include "muscl_hancock.hpp"
@@ -343,17 +344,56 @@ TEST_CASE("G15 pressure relaxation of a mixed cell: ideal gases in closed form, 
   }
 }
 
-TEST_CASE("G15 products | air tubes at density ratios 10 to 1e4: the pressure on each side of the contact",
+namespace {
+
+//! What G15 measures beside the contact of a products | air tube, from one scheme's cell values: the mean pressure
+//! over the cells 2 to 10 cells from the exact contact on each side, relative to p*, and each material's own
+//! density over the same cells where it holds more than 1e-6 of the volume (the products' m1 / alpha on their side,
+//! the air's (rho - m1) / (1 - alpha) on its side), relative to the exact star densities.
+struct ContactSides {
+  double dp_products = 0, dp_air = 0, drho_products = 0, drho_air = 0;
+};
+ContactSides contact_sides(const std::vector<double>& rho, const std::vector<double>& p, const std::vector<double>& a,
+                           const std::vector<double>& m1, double xc, const MieGruneisenRiemann& exact) {
+  const int n = static_cast<int>(rho.size());
+  const double trace = 1e-6;
+  double p1 = 0, p2 = 0, r1 = 0, r2 = 0;
+  int n1 = 0, n2 = 0, k1 = 0, k2 = 0;
+  for (int i = 0; i < n; ++i) {
+    REQUIRE(std::isfinite(p[i]));
+    const double d = ((i + 0.5) / n - xc) * n;  // cells from the exact contact
+    if (d <= -2 && d >= -10) {
+      p1 += p[i], ++n1;
+      if (a[i] > trace) r1 += m1[i] / a[i], ++k1;
+    }
+    if (d >= 2 && d <= 10) {
+      p2 += p[i], ++n2;
+      if (a[i] < 1 - trace) r2 += (rho[i] - m1[i]) / (1 - a[i]), ++k2;
+    }
+  }
+  REQUIRE(k1 > 0);
+  REQUIRE(k2 > 0);
+  return {p1 / n1 / exact.p_star() - 1, p2 / n2 / exact.p_star() - 1, r1 / k1 / exact.rho_star_left() - 1,
+          r2 / k2 / exact.rho_star_right() - 1};
+}
+
+}  // namespace
+
+TEST_CASE("G15 products | air tubes at density ratios 10 to 1e4: the pressure on each side of the contact and the "
+          "phase densities, beside the five-equation reference",
           "[long][cip][G15]") {
   // Each preset's products at their constant-volume explosion state (rho0, E0 / rho0: a fully coupled charge)
   // left of x0 = 0.4, air at rho0 / ratio and 2.1e5 J/kg (293 K) right of it; outflow ends. Against the exact
-  // two-material Riemann solution (mie_gruneisen_riemann.hpp) at the time the fastest wave is 0.05 m from an end:
-  // - the pressure on each side of the contact: the mean over the cells 2 to 10 cells from the exact contact;
-  //   asserted within 1 % of p* on 800 and 1600 cells for density ratios 10 to 1000 (the ratio 1e4, also on 3200
-  //   cells, and 400 cells reported; the next test shows one gas at 1e3 and 1e4 with errors of the same size there);
-  // - each material's own density over the same cells (the products' m1 / alpha on its side, the air's on the
-  //   other, where present) against the exact star densities, and the products' density in the mixed cells
-  //   (0.01 < alpha < 0.99) against rho1* (largest deviation): reported (docs/gas-solver.md, "Pressure relaxation").
+  // two-material Riemann solution (mie_gruneisen_riemann.hpp) at the time the fastest wave is 0.05 m from an end,
+  // and beside the textbook scheme for the same materials on the same grid (five_equation_hllc.hpp: Kapila's
+  // five-equation model, MUSCL-Hancock/HLLC, Courant 0.8). Measured (contact_sides()): the pressure and each
+  // material's own density 2 to 10 cells either side of the exact contact. Asserted on 800 and 1600 cells:
+  // - ratios 10 to 1000: the pressure on each side within 1 % of p*;
+  // - ratio 1e4: the pressure error on each side within 1.5 times the reference's (G9's bound); the ratio 1e4 also
+  //   on 3200 cells and every ratio on 400 cells reported;
+  // - ratios 10 to 1000: each phase density's error within 1.5 times the reference's (at 1e4 reported). Issue #31
+  //   asks 2 %; neither textbook scheme gives it there (docs/gas-solver.md, "Phase densities beside the contact").
+  // Reported: the products' density in the mixed cells (0.01 < alpha < 0.99), largest deviation from rho1*.
   for (const char* preset : {"ANFO", "TNT"}) {
     const cip::JwlParameters jp = cip::EquationOfState::jwl_preset(preset).p;
     const cip::GasMaterials mat = preset_and_air(preset);
@@ -365,6 +405,7 @@ TEST_CASE("G15 products | air tubes at density ratios 10 to 1e4: the pressure on
       const MieGruneisenRiemann exact(mat.products, L, mat.air, R);
       const double x0 = 0.4;
       const double t = std::fmin((x0 - 0.05) / -exact.leftmost_speed(), (0.95 - x0) / exact.rightmost_speed());
+      const double xc = x0 + exact.u_star() * t;
       for (int n : {400, 800, 1600, 3200}) {
         if (n > 1600 && ratio < 1e4) continue;  // the ratio 1e4 also on 3200 cells (reported: convergence)
         cip::GasSolver s = products_tube(n, L, R, x0, false, mat);
@@ -372,50 +413,90 @@ TEST_CASE("G15 products | air tubes at density ratios 10 to 1e4: the pressure on
         const cip::HostGasFields h = s.to_host();
         const std::vector<double> rho = strip(h, h.rho, Axis::x), p = strip(h, h.p, Axis::x),
                                   a = strip(h, h.alpha, Axis::x), Y = strip(h, h.traced, Axis::x);
-        const double xc = x0 + exact.u_star() * t, ps = exact.p_star();
-        double p_products = 0, p_air = 0, rho1_worst = 0, rho1_side = 0, rho2_side = 0;
-        int n_products = 0, n_air = 0, n_rho1 = 0, n_rho2 = 0;
-        const double tiny = cip::GasMaterials::kMinFraction;
+        std::vector<double> m1(n);
+        double rho1_worst = 0;
         for (int i = 0; i < n; ++i) {
-          REQUIRE(std::isfinite(p[i]));
-          const double d = ((i + 0.5) / n - xc) * n;  // cells from the exact contact
-          if (d <= -2 && d >= -10) p_products += p[i], ++n_products;
-          if (d >= 2 && d <= 10) p_air += p[i], ++n_air;
-          // Each material's own density where it is present beside the contact (same cells as the pressures).
-          if (d <= -2 && d >= -10 && a[i] > tiny) rho1_side += Y[i] * rho[i] / a[i], ++n_rho1;
-          if (d >= 2 && d <= 10 && a[i] < 1 - tiny) rho2_side += (1 - Y[i]) * rho[i] / (1 - a[i]), ++n_rho2;
+          m1[i] = Y[i] * rho[i];
           if (a[i] > 0.01 && a[i] < 0.99)
-            rho1_worst = std::max(rho1_worst, std::fabs(Y[i] * rho[i] / a[i] / exact.rho_star_left() - 1));
+            rho1_worst = std::max(rho1_worst, std::fabs(m1[i] / a[i] / exact.rho_star_left() - 1));
         }
-        const double dp_products = p_products / n_products / ps - 1, dp_air = p_air / n_air / ps - 1;
+        const ContactSides ours = contact_sides(rho, p, a, m1, xc, exact);
+        FiveEquationHllc five(n, 1.0, x0, L, R, mat);
+        five.run_to(t);
+        std::vector<double> rho_r(n), p_r(n), a_r(n), m1_r(n);
+        for (int i = 0; i < n; ++i)
+          rho_r[i] = five.density(i), p_r[i] = five.pressure(i), a_r[i] = five.alpha(i), m1_r[i] = five.m1(i);
+        const ContactSides ref = contact_sides(rho_r, p_r, a_r, m1_r, xc, exact);
         // With BLASTSIM_FIGURE_DIR set, the profiles against the exact solution.
         if (const char* dir = std::getenv("BLASTSIM_FIGURE_DIR")) {
           const std::vector<double> u = strip(h, h.u, Axis::x);
           std::ofstream out(std::string(dir) + "/g15_" + preset + "_" + std::to_string(static_cast<int>(ratio)) + "_" +
                             std::to_string(n) + ".csv");
-          out << "x_m,rho,rho_exact,p_Pa,p_exact,u_m_per_s,u_exact,alpha,traced,t_s\n";
+          out << "x_m,rho,rho_exact,p_Pa,p_exact,u_m_per_s,u_exact,alpha,traced,t_s,rho_five_eq,alpha_five_eq\n";
           for (int i = 0; i < n; ++i) {
             const double x = (i + 0.5) / n;
             const Primitive e = exact.sample((x - x0) / t);
             out << x << "," << rho[i] << "," << e.rho << "," << p[i] << "," << e.p << "," << u[i] << "," << e.u << ","
-                << a[i] << "," << Y[i] << "," << t << "\n";
+                << a[i] << "," << Y[i] << "," << t << "," << rho_r[i] << "," << a_r[i] << "\n";
           }
         }
-        REQUIRE(n_rho1 > 0);
-        REQUIRE(n_rho2 > 0);
-        std::printf("G15 %s products into air, density ratio %g, %d cells: p* %.4e Pa; products side %+.2f %%, air side "
-                    "%+.2f %%; phase densities there %+.2f %% (products, rho1* %.4g kg/m3) and %+.2f %% (air, rho2* "
-                    "%.4g kg/m3); products density in mixed cells up to %.1f %% from rho1*\n",
-                    preset, ratio, n, ps, 100 * dp_products, 100 * dp_air,
-                    100 * (rho1_side / n_rho1 / exact.rho_star_left() - 1), exact.rho_star_left(),
-                    100 * (rho2_side / n_rho2 / exact.rho_star_right() - 1), exact.rho_star_right(), 100 * rho1_worst);
-        if ((n == 800 || n == 1600) && ratio <= 1e3) {
-          CHECK(std::fabs(dp_products) <= 0.01);
-          CHECK(std::fabs(dp_air) <= 0.01);
+        std::printf("G15 %s products into air, density ratio %g, %d cells: p* %.4e Pa; pressure beside the contact, "
+                    "products side %+.2f %% (five-equation reference %+.2f %%), air side %+.2f %% (%+.2f %%); phase "
+                    "densities there: products %+.2f %% (%+.2f %%) of rho1* %.4g kg/m3, air %+.2f %% (%+.2f %%) of "
+                    "rho2* %.4g kg/m3; products density in mixed cells up to %.1f %% from rho1*\n",
+                    preset, ratio, n, exact.p_star(), 100 * ours.dp_products, 100 * ref.dp_products, 100 * ours.dp_air,
+                    100 * ref.dp_air, 100 * ours.drho_products, 100 * ref.drho_products, exact.rho_star_left(),
+                    100 * ours.drho_air, 100 * ref.drho_air, exact.rho_star_right(), 100 * rho1_worst);
+        if (n != 800 && n != 1600) continue;
+        if (ratio <= 1e3) {
+          CHECK(std::fabs(ours.dp_products) <= 0.01);
+          CHECK(std::fabs(ours.dp_air) <= 0.01);
+          CHECK(std::fabs(ours.drho_products) <= 1.5 * std::fabs(ref.drho_products));
+          CHECK(std::fabs(ours.drho_air) <= 1.5 * std::fabs(ref.drho_air));
+        } else {
+          CHECK(std::fabs(ours.dp_products) <= 1.5 * std::fabs(ref.dp_products));
+          CHECK(std::fabs(ours.dp_air) <= 1.5 * std::fabs(ref.dp_air));
         }
       }
     }
   }
+}
+
+TEST_CASE("G15 the five-equation reference: one material on both sides gives MUSCL-Hancock's Sod tube, a moving "
+          "products | air interface keeps its pressure",
+          "[cip][G15]") {
+  // The reference of the test above checked on cases with known answers. (a) Air on both sides of its two materials
+  // is one ideal gas: on Sod's tube (Toro's test 1, t = 0.25) the density L1 against the exact solution within 5 %
+  // of the one-gas MUSCL-Hancock/HLLC reference's (muscl_hancock.hpp; the two differ only in the variables they
+  // limit) on 100 to 800 cells. (b) ANFO products (300 kg/m3) | air (0.3 kg/m3) at 2e8 Pa, moving at 1000 m/s
+  // across 30 % of a 200-cell tube: the pressure stays uniform to round-off (1e-12).
+  cip::GasMaterials air_air;
+  air_air.air = air_air.products = kAir;
+  air_air.two = true;
+  const Primitive L{1.0, 0.0, 1.0}, R{0.125, 0.0, 0.1};
+  const ExactRiemann exact(L, R, 1.4);
+  for (int n : {100, 200, 400, 800}) {
+    FiveEquationHllc five(n, 1.0, 0.5, L, R, air_air);
+    five.run_to(0.25);
+    MusclHancock mh(n, 1.0, 0.5, L, R, 1.4);
+    mh.run_to(0.25);
+    double l1 = 0, l1_mh = 0;
+    for (int i = 0; i < n; ++i) {
+      const double e = exact.sample(((i + 0.5) / n - 0.5) / 0.25).rho;
+      l1 += std::fabs(five.density(i) - e) / n;
+      l1_mh += std::fabs(mh.density(i) - e) / n;
+    }
+    std::printf("G15 five-equation reference, air | air Sod tube, %d cells: density L1 %.4e (MUSCL-Hancock %.4e)\n", n,
+                l1, l1_mh);
+    CHECK_THAT(l1, WithinRel(l1_mh, 0.05));
+  }
+  const double p = 2e8, u = 1000.0;
+  FiveEquationHllc moving(200, 1.0, 0.3, {300.0, u, p}, {0.3, u, p}, anfo_and_air());
+  moving.run_to(0.3 / u);
+  double dp = 0;
+  for (int i = 0; i < 200; ++i) dp = std::max(dp, std::fabs(moving.pressure(i) / p - 1));
+  std::printf("G15 five-equation reference, moving products | air interface: max |dp/p| %.1e\n", dp);
+  CHECK(dp <= 1e-12);
 }
 
 TEST_CASE("G15 one gas at density ratios of 1e3 and 1e4: the star pressure against the exact solution, beside "
@@ -429,6 +510,7 @@ TEST_CASE("G15 one gas at density ratios of 1e3 and 1e4: the star pressure again
   // (0.02 m inside the exact contact and shock) against the exact p*, and the relative density L1, for blastsim's
   // default step and for the textbook MUSCL-Hancock/HLLC reference (muscl_hancock.hpp, Courant 0.9) on the same
   // grid. Asserted on 800 and 1600 cells: each within 1.5 times the reference's (G9's bound); 400 cells reported.
+  // Reported: the expanded gas's density 2 to 10 cells behind the contact (G15's band), both schemes.
   for (double ratio : {1e3, 1e4}) {
     const double gamma = 1.4, rho_right = 800.0 / ratio;
     const Primitive L{800.0, 0.0, 1.678e9}, R{rho_right, 0.0, (gamma - 1) * rho_right * 2.1e5};
@@ -442,20 +524,26 @@ TEST_CASE("G15 one gas at density ratios of 1e3 and 1e4: the star pressure again
       const std::vector<double> rho = strip(h, h.rho, Axis::x), p = strip(h, h.p, Axis::x);
       MusclHancock ref(n, 1.0, x0, L, R, gamma);
       ref.run_to(t);
-      double p_sum = 0, p_ref = 0, l1 = 0, l1_ref = 0, norm = 0;
-      int count = 0;
+      double p_sum = 0, p_ref = 0, l1 = 0, l1_ref = 0, norm = 0, layer = 0, layer_ref = 0;
+      int count = 0, n_layer = 0;
       for (int i = 0; i < n; ++i) {
         const double x = (i + 0.5) / n, rho_exact = exact.sample((x - x0) / t).rho;
         l1 += std::fabs(rho[i] - rho_exact);
         l1_ref += std::fabs(ref.density(i) - rho_exact);
         norm += rho_exact;
         if (x > x_contact + 0.02 && x < x_shock - 0.02) p_sum += p[i], p_ref += ref.pressure(i), ++count;
+        // The expanded gas 2 to 10 cells behind the contact (G15's band): the start-up's entropy layer.
+        const double d = (x - x_contact) * n;
+        if (d <= -2 && d >= -10) layer += rho[i], layer_ref += ref.density(i), ++n_layer;
       }
       REQUIRE(count > 10);
       const double dp = p_sum / count / exact.p_star() - 1, dp_ref = p_ref / count / exact.p_star() - 1;
+      const double rho_left = exact.sample((x_contact - 1e-9 - x0) / t).rho;
       std::printf("G15 one gas, density ratio %g, %d cells: air's star pressure %+.2f %% (MUSCL-Hancock %+.2f %%) of "
-                  "p* %.4e Pa; relative density L1 %.3e (MUSCL-Hancock %.3e)\n",
-                  ratio, n, 100 * dp, 100 * dp_ref, exact.p_star(), l1 / norm, l1_ref / norm);
+                  "p* %.4e Pa; relative density L1 %.3e (MUSCL-Hancock %.3e); the expanded gas's density 2-10 cells "
+                  "behind the contact %+.2f %% (MUSCL-Hancock %+.2f %%) of %.4g kg/m3\n",
+                  ratio, n, 100 * dp, 100 * dp_ref, exact.p_star(), l1 / norm, l1_ref / norm,
+                  100 * (layer / n_layer / rho_left - 1), 100 * (layer_ref / n_layer / rho_left - 1), rho_left);
       if (n >= 800) {
         CHECK(std::fabs(dp) <= 1.5 * std::fabs(dp_ref));
         CHECK(l1 <= 1.5 * l1_ref);
