@@ -75,9 +75,9 @@ class FiveEquationHllc {
   struct State {
     double m1, m2, u, p, a1;
     double rho() const { return m1 + m2; }
-    double& operator[](int k) { return k == 0 ? m1 : k == 1 ? m2 : k == 2 ? u : k == 3 ? p : a1; }
-    double operator[](int k) const { return const_cast<State&>(*this)[k]; }
   };
+  //! The variables the slopes limit, in order.
+  static constexpr double State::*kLimited[5] = {&State::m1, &State::m2, &State::u, &State::p, &State::a1};
 
   Vars conserved(const State& w) const {
     const double rho = w.rho();
@@ -151,10 +151,10 @@ class FiveEquationHllc {
     for (int i = 0; i < m; ++i) W[i] = primitive(U_[i]);
     for (int i = 1; i < m - 1; ++i) {
       State a = W[i], b = W[i];
-      for (int k = 0; k < 5; ++k) {
-        const double d = minmod(W[i][k] - W[i - 1][k], W[i + 1][k] - W[i][k]);
-        a[k] -= 0.5 * d;
-        b[k] += 0.5 * d;
+      for (double State::*q : kLimited) {
+        const double d = minmod(W[i].*q - W[i - 1].*q, W[i + 1].*q - W[i].*q);
+        a.*q -= 0.5 * d;
+        b.*q += 0.5 * d;
       }
       const Vars Ua = conserved(a), Ub = conserved(b), Fa = flux(Ua, a), Fb = flux(Ub, b);
       const double K = kapila_k(W[i]);
