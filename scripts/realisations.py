@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Run one blastsim case N times on perturbed meshes and gather the spread of its main results.
 
-Usage: scripts/realisations.py CASE.toml N [--jitter F] [--strength-seed] [--out DIR] [--blastsim PATH]
+Usage: scripts/realisations.py CASE.toml N [--jitter F] [--rotate] [--strength-seed] [--out DIR] [--blastsim PATH]
                                [--resume] [--collect-only] [section.key=value ...]
 
 Realisation K (K = 1..N) runs, one after another,
     blastsim -q CASE.toml rock.mesh.jitter=F rock.mesh.seed=K output.directory=DIR/seed_K [section.key=value ...]
-with F = 0.03 unless --jitter says otherwise (--jitter 0 keeps the mesh; --strength-seed also sets
+with F = 0.03 unless --jitter says otherwise (--jitter 0 keeps the mesh; --rotate also turns the mesh of a disc
+shape about its centre, rock.mesh.rotation = rotation_deg(K), so that the polygons of its circles sit differently
+on the gas grid in each realisation; --strength-seed also sets
 rock.heterogeneity.seed=K, for a case with a [rock.heterogeneity] table: docs/input.md); DIR defaults to realisations_<case stem> in the current directory
 and blastsim to build-cpu/apps/blastsim/blastsim of this repository. The driver's own output goes to
 DIR/seed_K/blastsim.log. --resume skips a seed whose summary.txt says the run reached time.end (read from the
@@ -50,6 +52,12 @@ EJECTION = ("ejection_time_s", "gas ejection time [s]")
 FRONT_RADII = (0.2, 0.4, 0.6)
 BLAST = [(f"blast_front_{round(100 * r)}cm_s", f"blast gas front at {r:g} m [s]") for r in FRONT_RADII] + \
         [("blast_arrival_s", "blast gas at the outer surface [s]"), ("end_s", "time reached [s]")]
+
+
+def rotation_deg(k):
+    """The mesh turn of realisation k under --rotate [deg]: 360 times the fractional part of k times the golden
+    ratio's fractional part, angles spread evenly over the circle whatever the number of realisations."""
+    return round(360.0 * ((k * (math.sqrt(5.0) - 1.0) / 2.0) % 1.0), 6)
 
 
 def last_row(path):
@@ -102,6 +110,8 @@ def run_all(args, out):
         folder.mkdir(parents=True, exist_ok=True)
         command = [str(blastsim), "-q", args.case, f"rock.mesh.jitter={args.jitter}", f"rock.mesh.seed={k}",
                    f"output.directory={folder.resolve()}", *args.overrides]
+        if args.rotate:
+            command.append(f"rock.mesh.rotation={rotation_deg(k)}")
         if args.strength_seed:
             command.append(f"rock.heterogeneity.seed={k}")
         print(f"[{k}/{args.n}] seed {k}: running into {folder} ...", end=" ", flush=True)
@@ -183,7 +193,8 @@ def write_tables(args, out, failed):
         for k, row in rows.items():
             w.writerow([k, f"seed_{k}"] + [cell(row[c]) for c in columns])
     lines = [f"# Realisations of {Path(args.case).name}: runs of seeds {', '.join(map(str, seeds))} in {out}",
-             "", f"Mesh jitter {args.jitter} (this command's --jitter); "
+             "", f"Mesh jitter {args.jitter} (this command's --jitter)"
+             f"{'; each mesh turned by rock.mesh.rotation = rotation_deg(K) (--rotate)' if args.rotate else ''}; "
              f"overrides: {' '.join(args.overrides) or 'none'}.", "",
              "| quantity | runs | mean | std (n-1) | min | max | CV | notes |",
              "|---|---:|---:|---:|---:|---:|---:|---|"]
@@ -207,6 +218,8 @@ def main():
     p.add_argument("n", type=int, help="number of realisations (seeds 1..N)")
     p.add_argument("overrides", nargs="*", help="extra section.key=value overrides for every run")
     p.add_argument("--jitter", type=float, default=0.03, help="rock.mesh.jitter of every run (default 0.03)")
+    p.add_argument("--rotate", action="store_true",
+                   help="also turn the mesh (disc shapes): rock.mesh.rotation=rotation_deg(K) in realisation K")
     p.add_argument("--strength-seed", action="store_true",
                    help="also draw the joint strengths afresh: rock.heterogeneity.seed=K in realisation K")
     p.add_argument("--out", help="folder of the runs (default realisations_<case stem>)")

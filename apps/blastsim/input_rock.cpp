@@ -41,6 +41,8 @@ fdem::MeshSpec read_mesh(TableReader& t) {
   s.shape = static_cast<MeshShape>(std::find(shapes.begin(), shapes.end(), shape) - shapes.begin());
   s.jitter = t.number("jitter", "", Range{0.0, 0.25, false, false}, 0.0);
   s.seed = t.integer("seed", "", 0, 1);
+  // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
+  if (t.has("rotation")) s.rotation = t.number("rotation", "deg", Range{-360.0, 360.0, false, false}) * M_PI / 180;
   if (s.shape == MeshShape::file) {
     s.file = t.text("file", {});
     return s;

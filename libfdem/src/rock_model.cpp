@@ -136,16 +136,32 @@ NamedMesh build_mesh(const MeshSpec& s) {
   if (one_hole && !(s.hole_radius >= 0.5 * s.element_size))
     throw InputError(s.label + ".hole_radius = " + num(s.hole_radius) + " m: a hole needs a radius of at least half an "
                      "element (" + s.label + ".element_size = " + num(s.element_size) + " m)");
-  NamedMesh m = mesh_of_shape(s);
+  if (s.rotation != 0 && s.shape != MeshShape::disc && s.shape != MeshShape::disc_with_hole)
+    throw InputError(s.label + ".rotation = " + num(s.rotation * 180 / M_PI) + " deg: only a mesh of shape \"disc\" or "
+                     "\"disc_with_hole\" can be turned (the rock stays the same; this mesh is \"" +
+                     mesh_shape_name(s.shape) + "\"): remove the key");
+  // A turned mesh: the joint lines turned back by the angle, the shape meshed, then every vertex turned by it, so
+  // the circles' polygons turn and the lines end where the spec puts them.
+  const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
+  auto turn = [&](std::array<double, 2>& p, double sign) {
+    const double dx = p[0] - s.center[0], dy = p[1] - s.center[1];
+    p = {s.center[0] + c * dx - sign * sn * dy, s.center[1] + sign * sn * dx + c * dy};
+  };
+  MeshSpec meshed = s;
+  if (s.rotation != 0)
+    for (Segment& g : meshed.joint_lines) turn(g.a, -1.0), turn(g.b, -1.0);
+  NamedMesh m = mesh_of_shape(meshed);
   if (s.jitter > 0) {
     try {
       perturb_mesh(m.mesh, s.jitter, static_cast<std::uint64_t>(s.seed),
-                   joint_line_vertices(m.mesh, s.joint_lines, s.element_size));
+                   joint_line_vertices(m.mesh, meshed.joint_lines, s.element_size));
     } catch (const InputError& e) {
       throw InputError(s.label + ".jitter = " + num(s.jitter) + ": the perturbed mesh is invalid (" + e.what() +
                        "); use a smaller jitter");
     }
   }
+  if (s.rotation != 0)
+    for (std::array<double, 2>& p : m.mesh.vertices) turn(p, 1.0);
   return m;
 }
 

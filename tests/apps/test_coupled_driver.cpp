@@ -177,6 +177,9 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK_THROWS_WITH(read({"analysis.oversize=0"}), Catch::Contains("analysis.oversize"));
   CHECK_THROWS_WITH(read({"analysis.min_fragment_triangles=0"}), Catch::Contains("analysis.min_fragment_triangles"));
   CHECK_THROWS_WITH(read({"rock.mesh.jitter=0.5"}), Catch::Contains("rock.mesh.jitter"));
+  CHECK_THROWS_WITH(read({"rock.mesh.rotation=400"}), Catch::Contains("rock.mesh.rotation"));
+  CHECK(read({"rock.mesh.rotation=30"}).rock.model.mesh.rotation == Approx(M_PI / 6).epsilon(1e-15));
+  CHECK(read({}).rock.model.mesh.rotation == 0.0);
   CHECK_THROWS_WITH(read({"probe.rock_point.1.name=\"r010\""}), Catch::Contains("probe.rock_point.1.name"));
   CHECK_THROWS_WITH(read({"analysis.damage_ring_width=-0.1"}), Catch::Contains("analysis.damage_ring_width"));
   CHECK_THROWS_WITH(read({"analysis.crushed_fraction=0"}), Catch::Contains("analysis.crushed_fraction"));

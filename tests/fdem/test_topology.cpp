@@ -3,6 +3,7 @@
 #include "blastsim/core/error.hpp"
 #include "blastsim/fdem/gmsh_mesh.hpp"
 #include "blastsim/fdem/mesh.hpp"
+#include "blastsim/fdem/rock_model.hpp"
 #include "catch.hpp"
 
 #include <algorithm>
@@ -124,4 +125,59 @@ TEST_CASE("Mesh jitter: interior vertices move within the bound, boundary and fi
   CHECK(a.vertices == b.vertices);
   CHECK(a.vertices != c.vertices);
   CHECK_THROWS_AS(perturb_mesh(a, 0.3, 1), blastsim::InputError);
+}
+
+TEST_CASE("Mesh rotation: a turned disc_with_hole is the same rock with its polygons turned, its joint line in place",
+          "[fdem][mesh][rotation]") {
+  MeshSpec s;
+  s.label = "mesh";
+  s.shape = MeshShape::disc_with_hole;
+  s.center = {0.1, -0.2};
+  s.radius = 0.3, s.hole_radius = 0.05, s.element_size = 0.03;
+  const double angle = 0.4;  // [rad]
+  const double c = std::cos(angle), sn = std::sin(angle);
+  const NamedMesh base = build_mesh(s);
+  s.rotation = angle;
+  const NamedMesh turned = build_mesh(s);
+  // Without joint lines Gmsh meshes the same shape: every vertex is the base's turned about the centre.
+  REQUIRE(turned.mesh.vertices.size() == base.mesh.vertices.size());
+  CHECK(turned.mesh.triangles == base.mesh.triangles);
+  double worst = 0;
+  for (size_t v = 0; v < base.mesh.vertices.size(); ++v) {
+    const double dx = base.mesh.vertices[v][0] - s.center[0], dy = base.mesh.vertices[v][1] - s.center[1];
+    const double x = s.center[0] + c * dx - sn * dy, y = s.center[1] + sn * dx + c * dy;
+    worst = std::max(worst, std::hypot(turned.mesh.vertices[v][0] - x, turned.mesh.vertices[v][1] - y));
+  }
+  // The hole's vertices stay on the hole's circle, and the first one has moved along it by the angle.
+  double off_circle = 0;
+  for (const auto& e : turned.boundary_groups.at("hole"))
+    for (int v : e)
+      off_circle = std::max(off_circle, std::fabs(std::hypot(turned.mesh.vertices[v][0] - s.center[0],
+                                                             turned.mesh.vertices[v][1] - s.center[1]) - s.hole_radius));
+  std::printf("mesh rotation 0.4 rad: %zu vertices, largest distance from the turned base %.2e m, hole vertices "
+              "off the circle by at most %.2e m\n", base.mesh.vertices.size(), worst, off_circle);
+  CHECK(worst <= 1e-15);
+  CHECK(turned.boundary_groups.at("hole").size() == base.boundary_groups.at("hole").size());
+  CHECK(off_circle <= 1e-15);
+  // A joint line stays where the spec puts it: the vertices along it lie on it, as many as without the turn.
+  const Segment line{{0.1 + 0.08, -0.2}, {0.1 + 0.26, -0.2}};
+  auto on_line = [&](const TriangleMesh& m) {
+    int n = 0;
+    for (const auto& p : m.vertices)
+      if (std::fabs(p[1] - line.a[1]) <= 1e-12 && p[0] >= line.a[0] - 1e-12 && p[0] <= line.b[0] + 1e-12) ++n;
+    return n;
+  };
+  s.joint_lines = {line};
+  const int along_turned = on_line(build_mesh(s).mesh);
+  s.rotation = 0;
+  const int along_base = on_line(build_mesh(s).mesh);
+  std::printf("mesh rotation with a joint line of 0.18 m: %d vertices on it (%d unturned)\n", along_turned, along_base);
+  CHECK(along_turned >= 7);  // the line's two ends and at least one vertex per element along it
+  CHECK(along_turned == along_base);
+  // Only the shapes a turn leaves the same rock.
+  MeshSpec box;
+  box.label = "rock.mesh";
+  box.shape = MeshShape::rectangle;
+  box.min = {0.0, 0.0}, box.max = {0.2, 0.1}, box.element_size = 0.02, box.rotation = 0.1;
+  CHECK_THROWS_WITH(build_mesh(box), Catch::Contains("rock.mesh.rotation") && Catch::Contains("disc_with_hole"));
 }

@@ -43,6 +43,9 @@ struct MeshSpec {
   std::vector<Circle> holes;
   double jitter = 0;  //!< interior vertices moved by up to this fraction of their shortest edge (0: none)
   long long seed = 1;  //!< of the jitter (one realisation per seed)
+  //! [rad] a disc or disc_with_hole mesh turned by this angle about `center` (counter-clockwise), its joint lines
+  //! kept where they are: the same rock, its circles' polygons placed differently (0: as Gmsh makes it)
+  double rotation = 0;
   bool is_rectangle() const;
   bool has_holes() const;  //!< rectangle_with_holes or disc_with_holes
   //! [m2] the rock's area before the holes (0 for a file).
@@ -62,7 +65,8 @@ void check_joint_lines(const MeshSpec& spec);
 void check_mesh_segment(const MeshSpec& spec, const Segment& segment, const std::string& label);
 
 //! The mesh of `spec`, jittered when spec.jitter > 0 (the vertices on joint lines stay, so the lines stay
-//! straight). Throws InputError when Gmsh or the file fails, or when the jittered mesh is invalid.
+//! straight), turned by spec.rotation. Throws InputError when Gmsh or the file fails, when the jittered mesh is
+//! invalid, or when a rotation is asked of a shape other than "disc" or "disc_with_hole".
 NamedMesh build_mesh(const MeshSpec& spec);
 
 //! Prescribed velocity [m/s] of every node whose initial position lies in the box [min, max] [m].
