@@ -148,7 +148,7 @@ TEST_CASE("Mesh rotation: a turned disc_with_hole is the same rock with its poly
     const double x = s.center[0] + c * dx - sn * dy, y = s.center[1] + sn * dx + c * dy;
     worst = std::max(worst, std::hypot(turned.mesh.vertices[v][0] - x, turned.mesh.vertices[v][1] - y));
   }
-  // The hole's vertices stay on the hole's circle, and the first one has moved along it by the angle.
+  // The hole's vertices stay on the hole's circle.
   double off_circle = 0;
   for (const auto& e : turned.boundary_groups.at("hole"))
     for (int v : e)
