@@ -57,11 +57,13 @@ int main(int argc, char** argv) {
       fusion = cip::KernelFusion::fused;
     } else if (arg == "--separate") {
       fusion = cip::KernelFusion::separate;
-    } else if (arg == "--gas-load=faces" || arg == "--gas-load=edges") {
-      load = arg == "--gas-load=faces" ? ibm::GasLoad::face_forces : ibm::GasLoad::edge_pressures;
+    } else if (arg == "--gas-load=faces" || arg == "--gas-load=edges" || arg == "--gas-load=edges_paid") {
+      load = arg == "--gas-load=faces"   ? ibm::GasLoad::face_forces
+             : arg == "--gas-load=edges" ? ibm::GasLoad::edge_pressures
+                                         : ibm::GasLoad::edge_pressures_paid;
     } else {
       std::fprintf(stderr, "usage: %s [--cases=N:H,...] [--steps=N] [--warmup=N] [--kernels] [--fused | --separate]\n"
-                           "       [--gas-load=edges|faces]\n"
+                           "       [--gas-load=edges|faces|edges_paid]\n"
                            "  N: gas cells per side of the 2.24 m grid; H: triangle size [m] (paper: 5001:0.0095)\n"
                            "  --kernels: also every kernel's time and launches per step\n"
                            "  --fused, --separate: the gas step's kernel groups as one launch each, or one by one\n"

@@ -11,8 +11,9 @@ namespace blastsim::app {
 void read_coupling(TableReader& root, Case& c) {
   CouplingSettings& k = c.coupling;
   TableReader coupling = root.table("coupling");
-  k.gas_load = coupling.text("gas_load", {"edges", "faces"}, std::string("edges")) == "faces" ? ibm::GasLoad::face_forces
-                                                                                              : ibm::GasLoad::edge_pressures;
+  const std::string load = coupling.text("gas_load", {"edges", "faces", "edges_paid"}, std::string("edges"));
+  k.gas_load = load == "faces" ? ibm::GasLoad::face_forces
+                               : (load == "edges_paid" ? ibm::GasLoad::edge_pressures_paid : ibm::GasLoad::edge_pressures);
   coupling.finish();
   TableReader crack = root.table("crack_gas");
   k.crack_gas = crack.boolean("enabled", false);

@@ -6,6 +6,8 @@
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/ibm/gas_load_kernels.hpp"
 
+#include <thrust/sort.h>
+
 #include <string>
 #include <utility>
 
@@ -16,6 +18,10 @@ struct FaceWorkArrays {
   DeviceVector<double> u_old, v_old;                  // padded shape
   DeviceVector<FaceLoadRecord> record_u, record_v;     // padded shape, marked with the load that wrote them
   DeviceVector<double> x0, y0, vx0, vy0;              // per rock node
+};
+struct EdgeWorkArrays {                 // per edge slot (GasLoad::edge_pressures_paid)
+  DeviceVector<int> source, key, record;  // the cell that gave the pressure; sorted keys and their slots
+  DeviceVector<double> loaded, work;      // the pressure given [Pa]; the work it did over the step [J/m]
 };
 }  // namespace detail
 
@@ -28,10 +34,13 @@ struct CopyValues {
 };
 }  // namespace
 
-GasLoading::GasLoading(GasLoad load) : load_(load), a_(std::make_unique<detail::FaceWorkArrays>()) {}
+GasLoading::GasLoading(GasLoad load)
+    : load_(load), a_(std::make_unique<detail::FaceWorkArrays>()), edge_work_(std::make_unique<detail::EdgeWorkArrays>()) {}
 GasLoading::~GasLoading() = default;
 
-const char* gas_load_name(GasLoad load) { return load == GasLoad::face_forces ? "faces" : "edges"; }
+const char* gas_load_name(GasLoad load) {
+  return load == GasLoad::face_forces ? "faces" : (load == GasLoad::edge_pressures_paid ? "edges_paid" : "edges");
+}
 
 FacePointRule face_point_rule(GasLoad load) {
   return load == GasLoad::face_forces ? FacePointRule::surface_normal : FacePointRule::shape_functions;
@@ -43,13 +52,23 @@ void GasLoading::load_rock(CouplingContext& ctx) {
   const cip::ImmersedBoundaryView ib = ctx.gas.immersed_boundary();
   const fdem::RockView rock = ctx.rock.view();
   const cip::GasMaterials& mat = ctx.gas.materials();
-  const bool faces = load_ == GasLoad::face_forces;
-  for_each_index("ibm.edge_pressure", 3 * static_cast<index_t>(rock.triangle_count),
+  const bool faces = load_ == GasLoad::face_forces, paid = load_ == GasLoad::edge_pressures_paid;
+  const index_t slots = 3 * static_cast<index_t>(rock.triangle_count);
+  detail::EdgeWorkArrays& ew = *edge_work_;
+  if (paid) ew.source.resize(slots), ew.loaded.resize(slots);
+  for_each_index("ibm.edge_pressure", slots,
                  EdgePressureKernel{rock, g, mat, ctx.gas.material_fields(), ib.cell_active, s.rho.f, s.e.f,
-                                    ctx.ambient_pressure, faces});
-  if (!faces) return;
-  const PaddedShape sh = g.padded_shape();
+                                    ctx.ambient_pressure, faces, paid ? device_ptr(ew.source) : nullptr,
+                                    paid ? device_ptr(ew.loaded) : nullptr});
+  if (!faces && !paid) return;
   detail::FaceWorkArrays& a = *a_;
+  if (paid) {  // the rock's nodes before its substeps, for the edges' work over the step (after_rock())
+    loaded_ = started_ && ctx.gas.steps() > 0;
+    if (!loaded_) return;
+    keep_nodes(ctx);
+    return;
+  }
+  const PaddedShape sh = g.padded_shape();
   if (a.record_u.size() != static_cast<size_t>(sh.size())) {  // once: every record marked as no load's
     const FaceLoadRecord none{{{0.0, 0.0, 0.0}, 0.0, 0.0}, -1.0};
     a.record_u.assign(sh.size(), none);
@@ -65,6 +84,13 @@ void GasLoading::load_rock(CouplingContext& ctx) {
   // whose P the loads used and whose energy equation counted the faces' velocities.
   loaded_ = started_ && ctx.gas.steps() > 0;
   if (!loaded_) return;
+  keep_nodes(ctx);
+  stamp_ = stamp;
+}
+
+void GasLoading::keep_nodes(CouplingContext& ctx) {
+  const fdem::RockView rock = ctx.rock.view();
+  detail::FaceWorkArrays& a = *a_;
   const index_t nodes = 3 * static_cast<index_t>(rock.triangle_count);
   for (auto [from, to] : {std::pair{rock.nodes.x, &a.x0}, std::pair{rock.nodes.y, &a.y0},
                           std::pair{rock.nodes.vx, &a.vx0}, std::pair{rock.nodes.vy, &a.vy0}}) {
@@ -72,11 +98,10 @@ void GasLoading::load_rock(CouplingContext& ctx) {
     for_each_index("ibm.face_work.nodes", nodes, CopyValues{from, device_ptr(*to)});
   }
   dt_prev_ = ctx.rock.previous_dt();
-  stamp_ = stamp;
 }
 
 void GasLoading::before_gas(CouplingContext& ctx, double) {
-  if (load_ != GasLoad::face_forces) return;
+  if (load_ == GasLoad::edge_pressures) return;
   const cip::GasStateView s = ctx.gas.state();
   const index_t n = ctx.gas.grid().padded_shape().size();
   a_->u_old.resize(n), a_->v_old.resize(n);
@@ -86,20 +111,41 @@ void GasLoading::before_gas(CouplingContext& ctx, double) {
 }
 
 void GasLoading::after_rock(CouplingContext& ctx, double dt, int rock_substeps) {
-  if (load_ != GasLoad::face_forces || !loaded_) return;
+  if (load_ == GasLoad::edge_pressures || !loaded_) return;
   loaded_ = started_ = false;
   const cip::GasGrid g = ctx.gas.grid();
   const PaddedShape sh = g.padded_shape();
   const detail::FaceWorkArrays& a = *a_;
   const cip::GasStateView s = ctx.gas.state();
   const cip::ImmersedBoundaryView ib = ctx.gas.immersed_boundary();
+  const FaceStepMotion motion{make_field_view(a.u_old, sh), make_field_view(a.v_old, sh), ib.u_imposed, ib.v_imposed, dt};
+  const CellPressureWork cell{g, Field2D<const double>{ctx.gas.pressure_with_viscosity().data, sh}, ib.cell_active,
+                              s.rho.f, s.e.f};
+  if (load_ == GasLoad::edge_pressures_paid) {
+    // The cells take back their prescribed faces' work, then pay their edges' (docs/coupling.md).
+    for_each_cell("ibm.edge_work.refund", 0, g.nx, 0, g.ny,
+                  PrescribedFaceRefundKernel{ib.u_prescribed, ib.v_prescribed, motion, cell});
+    detail::EdgeWorkArrays& ew = *edge_work_;
+    const fdem::RockView rock = ctx.rock.view();
+    const index_t slots = 3 * static_cast<index_t>(rock.triangle_count);
+    ew.key.resize(slots), ew.record.resize(slots), ew.work.resize(slots);
+    for_each_index("ibm.edge_work", slots,
+                   EdgeWorkKernel{rock, device_ptr(a.x0), device_ptr(a.y0), device_ptr(a.vx0), device_ptr(a.vy0),
+                                  dt / rock_substeps, dt_prev_, ctx.rock.pressure_scale(), device_ptr(ew.source),
+                                  device_ptr(ew.loaded), device_ptr(ew.key), device_ptr(ew.record),
+                                  device_ptr(ew.work)});
+    thrust::stable_sort_by_key(thrust::device, ew.key.begin(), ew.key.end(), ew.record.begin());
+    count_host_wait();  // the sort blocks
+    for_each_index("ibm.edge_work.charge", slots,
+                   EdgeWorkChargeKernel{device_ptr(ew.key), device_ptr(ew.record), device_ptr(ew.work),
+                                        static_cast<int>(slots), g.nx, g.cell_area(), ctx.gas.cells()});
+    return;
+  }
   for_each_cell("ibm.face_work", 0, g.nx, 0, g.ny,
                 FaceWorkLagKernel{ctx.rock.view(), device_ptr(a.x0), device_ptr(a.y0), device_ptr(a.vx0),
-                                  device_ptr(a.vy0), dt, dt / rock_substeps, dt_prev_, g, ctx.owners.u, ctx.owners.v,
-                                  make_field_view(a.record_u, sh), make_field_view(a.record_v, sh), stamp_,
-                                  make_field_view(a.u_old, sh), make_field_view(a.v_old, sh), ib.u_imposed,
-                                  ib.v_imposed, Field2D<const double>{ctx.gas.pressure_with_viscosity().data, sh},
-                                  ib.cell_active, s.rho.f, s.e.f});
+                                  device_ptr(a.vy0), dt / rock_substeps, dt_prev_, ctx.owners.u, ctx.owners.v,
+                                  make_field_view(a.record_u, sh), make_field_view(a.record_v, sh), stamp_, motion,
+                                  cell});
 }
 
 void GasLoading::add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const {

@@ -149,6 +149,12 @@ TEST_CASE("A coupled case's default Courant number follows its transport and gas
   const app::Case edges = read({"coupling.gas_load=\"edges\""});
   CHECK(edges.gas.courant == cip::kPaperCourant);
   CHECK(echoed(edges) == std::string("gas.courant = 0.1") + app::kDefaultMark);
+  // Paid edge pressures pay the rock's work over the substeps, as face forces do: the transport's number.
+  const app::Case paid = read({"coupling.gas_load=\"edges_paid\""});
+  CHECK(paid.coupling.gas_load == ibm::GasLoad::edge_pressures_paid);
+  CHECK(paid.gas.courant == cip::kConservativeCourant);
+  CHECK(echoed(paid) == std::string("gas.courant = 0.4") + app::kDefaultMark);
+  CHECK_THROWS_WITH(read({"coupling.gas_load=\"edge\""}), Catch::Contains("coupling.gas_load") && Catch::Contains("edges_paid"));
   CHECK(read({"coupling.gas_load=\"faces\"", "gas.transport=\"paper\""}).gas.courant == cip::kPaperCourant);
   const app::Case given = read({"coupling.gas_load=\"edges\"", "gas.courant=0.25"});
   CHECK(given.gas.courant == 0.25);

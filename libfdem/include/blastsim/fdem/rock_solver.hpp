@@ -100,6 +100,7 @@ class RockSolver {
   void break_joints(const std::vector<int>& joints);
   //! Multiplier of every edge pressure (a load ramp), 1 by default.
   void set_pressure_scale(double s) { pressure_scale_ = s; }
+  double pressure_scale() const { return pressure_scale_; }
 
   // --- device-array interface ---
   RockView view();

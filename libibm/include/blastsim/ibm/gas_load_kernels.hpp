@@ -25,6 +25,8 @@ namespace blastsim::ibm {
 //! that no gas pays for (both faces of a closed crack get the same pressure, which cancels). With face forces
 //! (GasLoad::face_forces) the grid gas loads the rock through FaceLoadKernel instead, and every edge pressure
 //! is 0. The faces of a crack with its own gas are loaded afterwards by the crack gas (CrackFacePressureKernel).
+//! With GasLoad::edge_pressures_paid (`source` not null) each slot also records the cell whose pressure it took
+//! (j nx + i; -1: none, the ambient pressure or not exposed) and that pressure, for EdgeWorkKernel.
 struct EdgePressureKernel {
   fdem::RockView rock;
   cip::GasGrid g;
@@ -34,9 +36,12 @@ struct EdgePressureKernel {
   Field2D<const double> rho, e;
   double ambient_pressure;
   bool face_forces;
+  int* source = nullptr;     // per slot, written when not null
+  double* loaded = nullptr;  // per slot [Pa], written when `source` is not null
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
     const std::uint8_t kind = rock.edges.exposed[s];
+    if (source) source[s] = -1;
     if (kind == fdem::kEdgeInside) return;
     if (face_forces) {
       rock.loads.pressure[s] = 0.0;
@@ -46,8 +51,10 @@ struct EdgePressureKernel {
     const double mx = 0.5 * (rock.nodes.x[a] + rock.nodes.x[b]), my = 0.5 * (rock.nodes.y[a] + rock.nodes.y[b]);
     int fi = 0, fj = 0;
     double p = ambient_pressure;
+    int from = -1;  // the cell that gave p
     if (facing_cell(g, {rock.nodes.x[a], rock.nodes.y[a]}, {rock.nodes.x[b], rock.nodes.y[b]}, fi, fj) && active(fi, fj)) {
       p = cip::cell_pressure(mat, materials, rho(fi, fj), e(fi, fj), fi, fj);
+      from = fj * g.nx + fi;
     } else if (kind == fdem::kEdgeBoundary) {
       const int ci = static_cast<int>(floor((mx - g.x_min) / g.dx)), cj = static_cast<int>(floor((my - g.y_min) / g.dy));
       double best = 1e300;
@@ -55,10 +62,120 @@ struct EdgePressureKernel {
         for (int i = imax(0, ci - 2); i <= imin(g.nx - 1, ci + 2); ++i) {
           if (!active(i, j)) continue;
           const double dx = g.cell_x(i) - mx, dy = g.cell_y(j) - my, d = dx * dx + dy * dy;
-          if (d < best) best = d, p = cip::cell_pressure(mat, materials, rho(i, j), e(i, j), i, j);
+          if (d < best) best = d, p = cip::cell_pressure(mat, materials, rho(i, j), e(i, j), i, j), from = j * g.nx + i;
         }
     }
     rock.loads.pressure[s] = p;
+    if (source) source[s] = from, loaded[s] = p;
+  }
+};
+
+//! GasLoad::edge_pressures_paid, one thread per edge slot after the rock's substeps (docs/coupling.md "Edge
+//! pressures that the gas pays for"): the work W [J/m] that the slot's pressure did on the rock over the coupled
+//! step, keyed by the cell that gave the pressure (EdgePressureKernel's `source`; 0x7fffffff: none). The rock's
+//! ledger (fdem::NodeUpdateKernel) counts f . d on each node per substep, f the pressure's half share -p L n / 2
+//! on the geometry at the substep's start and d its trapezoid displacement, which runs from x - v dt_prev / 2 to
+//! x + v_new dt / 2; over the substeps the d of a node add up to the path from x_0 - v_0 dt_prev / 2 to
+//! x_end - v_end dt_sub / 2, and the edge's force is taken on the geometry half way along it (midpoint rule: the
+//! difference from the ledger is of second order in the step's motion). A slot
+//! whose pressure is no longer the one the grid gas gave (a crack face that its own gas loads, CrackGasCoupling,
+//! whose work that gas pays) is not keyed.
+struct EdgeWorkKernel {
+  fdem::RockView rock;  // after the substeps
+  const double *x0, *y0, *vx0, *vy0;  // each node at the start of the step [m], [m/s]
+  double dt_sub, dt_prev;             // the rock's substep, its step before this coupled step [s]
+  double pressure_scale;              // the rock's factor on the edge pressures (fdem::RockSolver::pressure_scale())
+  const int* source;
+  const double* loaded;
+  int* key;
+  int* record;
+  double* work;  // [J/m]
+  BLAST_HD void operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    record[s] = s;
+    work[s] = 0.0;
+    key[s] = 0x7fffffff;
+    if (source[s] < 0 || !rock.edges.exposed[s] || rock.loads.pressure[s] != loaded[s]) return;
+    const int ends[2] = {fdem::slot_first_node(s), fdem::slot_second_node(s)};
+    fdem::Vec2 mid[2];          // each node half way along the ledger's path
+    double dx = 0.0, dy = 0.0;  // the two nodes' ledger displacements, added
+    for (int q = 0; q < 2; ++q) {
+      const int k = ends[q];
+      // The ledger's path runs from x_0 - v_0 dt_prev / 2 to x_end - v_end dt_sub / 2.
+      const double xa = x0[k] - 0.5 * vx0[k] * dt_prev, xb = rock.nodes.x[k] - 0.5 * rock.nodes.vx[k] * dt_sub;
+      const double ya = y0[k] - 0.5 * vy0[k] * dt_prev, yb = rock.nodes.y[k] - 0.5 * rock.nodes.vy[k] * dt_sub;
+      mid[q] = {0.5 * (xa + xb), 0.5 * (ya + yb)};
+      dx += xb - xa, dy += yb - ya;
+    }
+    const fdem::Vec2 n = fdem::edge_outward_normal(mid[0], mid[1]);
+    work[s] = -0.5 * pressure_scale * loaded[s] * (n.x * dx + n.y * dy);
+    key[s] = source[s];
+  }
+};
+
+//! GasLoad::edge_pressures_paid: each cell pays the work of the edges it loaded (EdgeWorkKernel), one thread per
+//! position of the slots sorted by cell (stable: slot order within a cell), the first of a cell's run summing it
+//! in that order (deterministic, no atomics). The work leaves the cell's internal energy; where it would take
+//! more than half of it, half is taken and the rest counted in the positivity ledger (as cip::GasCells::deposit()
+//! does), a source of the energy budget.
+struct EdgeWorkChargeKernel {
+  const int* key;     // sorted
+  const int* record;  // the slot at each sorted position
+  const double* work;
+  int slots, nx;
+  double cell_area;  // [m2]
+  cip::GasCells cells;
+  BLAST_HD void operator()(index_t ki) const {
+    const int k = static_cast<int>(ki);
+    const int c = key[k];
+    if (c == 0x7fffffff || (k > 0 && key[k - 1] == c)) return;
+    double W = 0.0;
+    for (int r = k; r < slots && key[r] == c; ++r) W += work[record[r]];
+    const int i = c % nx, j = c / nx;
+    const double mass = cells.s.rho.f(i, j) * cell_area, internal = cells.s.e.f(i, j) * mass;
+    const double taken = W > 0.5 * internal && internal > 0.0 ? 0.5 * internal : W;
+    cells.positivity_heat(i, j) += (W - taken) / cell_area;
+    cells.s.e.f(i, j) = (internal - taken) / mass;
+  }
+};
+
+//! How far a prescribed face moved over the gas step as the gas's energy equation counted it [m] (paper eq. 3
+//! with the face's time-centred velocity, cip::CellNonAdvectionKernel): (u_old + u_imposed) / 2 dt, u_old its
+//! velocity at the step's start (the imposed velocity of the step before).
+struct FaceStepMotion {
+  Field2D<const double> u_old, v_old, u_imposed, v_imposed;
+  double dt;  // the gas step [s]
+  BLAST_HD double paid(int axis, int i, int j) const {
+    return 0.5 * ((axis == 0 ? u_old : v_old)(i, j) + (axis == 0 ? u_imposed : v_imposed)(i, j)) * dt;
+  }
+};
+
+//! Pressure work on an active cell whose volume changed by dV [m2 per unit thickness] at its pressure P = p + q of
+//! the step: its internal energy changes by P dV.
+struct CellPressureWork {
+  cip::GasGrid g;
+  Field2D<const double> P;  // p + q of the step [Pa]
+  Field2D<const std::uint8_t> active;
+  Field2D<const double> rho;
+  Field2D<double> e;  // [J/kg]
+  BLAST_HD void add(int i, int j, double dV) const {
+    if (dV != 0.0) e(i, j) += P(i, j) * dV / (g.dx * g.dy * rho(i, j));
+  }
+};
+
+//! GasLoad::edge_pressures_paid, per cell after the rock's substeps: an active cell takes back the work its energy
+//! equation did at its prescribed faces in the gas step (FaceStepMotion), P A at each: the gas then loses to the
+//! rock exactly what EdgeWorkChargeKernel charges, the rock's own count of the edges' work.
+struct PrescribedFaceRefundKernel {
+  Field2D<const std::uint8_t> u_prescribed, v_prescribed;
+  FaceStepMotion motion;
+  CellPressureWork cell;
+  BLAST_HD double paid(int axis, int i, int j) const {
+    return (axis == 0 ? u_prescribed : v_prescribed)(i, j) ? motion.paid(axis, i, j) : 0.0;
+  }
+  BLAST_HD void operator()(int i, int j) const {
+    if (!cell.active(i, j)) return;
+    cell.add(i, j, (paid(0, i + 1, j) - paid(0, i, j)) * cell.g.dy + (paid(1, i, j + 1) - paid(1, i, j)) * cell.g.dx);
   }
 };
 
@@ -140,16 +257,12 @@ struct FaceLoadKernel {
 struct FaceWorkLagKernel {
   fdem::RockView rock;  // after the substeps
   const double *x0, *y0, *vx0, *vy0;  // each node at the start of the step [m], [m/s]
-  double dt, dt_sub, dt_prev;  // the coupled step, the rock's substep, its step before this coupled step [s]
-  cip::GasGrid g;
+  double dt_sub, dt_prev;  // the rock's substep, its step before this coupled step [s]
   Field2D<const int> owner_u, owner_v;
   Field2D<const FaceLoadRecord> record_u, record_v;
   double stamp;  // the step's load
-  Field2D<const double> u_old, v_old, u_imposed, v_imposed;
-  Field2D<const double> P;  // p + q of the step [Pa]
-  Field2D<const std::uint8_t> active;
-  Field2D<const double> rho;
-  Field2D<double> e;  // [J/kg]
+  FaceStepMotion motion;
+  CellPressureWork cell;
   //! How far face (i, j) of `axis` moved along +axis over the step as the rock counts it, beyond what the gas
   //! paid for [m]; 0 where the rock took no force from it.
   BLAST_HD double lag(int axis, int i, int j) const {
@@ -166,13 +279,11 @@ struct FaceWorkLagKernel {
       if (c.nx == 0.0 && c.ny == 0.0) d += c.w[k] * (axis == 0 ? mx : my);
       else d += c.w[k] * (axis == 0 ? c.nx : c.ny) * (c.nx * mx + c.ny * my);
     }
-    const double paid = 0.5 * ((axis == 0 ? u_old : v_old)(i, j) + (axis == 0 ? u_imposed : v_imposed)(i, j)) * dt;
-    return d - paid;
+    return d - motion.paid(axis, i, j);
   }
   BLAST_HD void operator()(int i, int j) const {
-    if (!active(i, j)) return;
-    const double dV = (lag(0, i, j) - lag(0, i + 1, j)) * g.dy + (lag(1, i, j) - lag(1, i, j + 1)) * g.dx;  // [m2]
-    if (dV != 0.0) e(i, j) += P(i, j) * dV / (g.dx * g.dy * rho(i, j));
+    if (!cell.active(i, j)) return;
+    cell.add(i, j, (lag(0, i, j) - lag(0, i + 1, j)) * cell.g.dy + (lag(1, i, j) - lag(1, i, j + 1)) * cell.g.dx);
   }
 };
 

@@ -19,20 +19,28 @@ enum class GasLoad {
   //! for, along the surface normal, with the weights that gave the face its imposed (normal) velocity: the
   //! rock receives exactly the work the gas did on its immersed faces.
   face_forces,
+  //! The paper's edge pressures, with the gas paying the rock's work: after the rock's substeps every active cell
+  //! takes back the work its energy equation did on its prescribed faces and pays the work of the edges it loaded,
+  //! as the rock's ledger counts it (docs/coupling.md "Edge pressures that the gas pays for").
+  edge_pressures_paid,
 };
-//! "edges" or "faces" (the driver's `coupling.gas_load`).
+//! True for the two edge-pressure loads.
+inline bool loads_edges(GasLoad load) { return load != GasLoad::face_forces; }
+//! "edges", "faces" or "edges_paid" (the driver's `coupling.gas_load`).
 const char* gas_load_name(GasLoad load);
 //! The face-point rule that goes with a load: face forces need the faces to move with the surface they load.
 FacePointRule face_point_rule(GasLoad load);
 //! The default Courant number of a coupled run: the transport's (cip::recommended_courant()), and the paper's
 //! with its edge pressures, whose energy budget holds at the paper's number only when the rock subcycles
-//! (docs/performance.md, "The Courant number"). Face forces pay the rock's work over the substeps exactly.
+//! (docs/performance.md, "The Courant number"). Face forces and paid edge pressures pay the rock's work over the
+//! substeps exactly.
 inline double recommended_courant(cip::Transport t, GasLoad load) {
   return load == GasLoad::edge_pressures ? cip::kPaperCourant : cip::recommended_courant(t);
 }
 
 namespace detail {
 struct FaceWorkArrays;
+struct EdgeWorkArrays;
 }
 
 //! A coupling process (coupling_process.hpp): the edge pressures [Pa] on every exposed edge (edge_pressures),
@@ -49,10 +57,14 @@ class GasLoading : public CouplingProcess {
   //! a crack face the ambient pressure. GasLoad::face_forces: forces on the nodes from the prescribed faces
   //! (FaceLoadKernel), edge pressures 0.
   void load_rock(CouplingContext& ctx) override;
-  //! GasLoad::face_forces: keeps the face velocities the gas step starts from (the energy equation's).
+  //! GasLoad::face_forces and edge_pressures_paid: keeps the face velocities the gas step starts from (the energy
+  //! equation's).
   void before_gas(CouplingContext& ctx, double dt) override;
   //! GasLoad::face_forces: the gas pays the work the rock received from the face forces over the step, which
   //! its energy equation counted at the faces' velocities instead of the rock's motion (FaceWorkLagKernel).
+  //! GasLoad::edge_pressures_paid: each active cell takes back what its energy equation paid at its prescribed
+  //! faces (PrescribedFaceRefundKernel) and pays the work of the edges it loaded (EdgeWorkKernel,
+  //! EdgeWorkChargeKernel).
   void after_rock(CouplingContext& ctx, double dt, int rock_substeps) override;
   //! The force of the gas on the rock (a device reduction) and its cumulative work (the rock's ledger).
   void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
@@ -61,10 +73,12 @@ class GasLoading : public CouplingProcess {
   void read_checkpoint(CheckpointReader& r) override;
 
  private:
+  void keep_nodes(CouplingContext& ctx);  // the rock's nodes and previous step before its substeps
   GasLoad load_;
   // GasLoad::face_forces, within one coupled step (nothing to checkpoint): the gas's face velocities at the
   // step's start, the coupling of each face point loaded, the rock's nodes at the load (gas_loading.cpp)
   std::unique_ptr<detail::FaceWorkArrays> a_;
+  std::unique_ptr<detail::EdgeWorkArrays> edge_work_;  // GasLoad::edge_pressures_paid: per slot, within one step
   double dt_prev_ = 0;   // [s] the rock's last step at the load
   double stamp_ = -1;    // the load's mark in the face records (the gas's step count then)
   bool started_ = false;  // before_gas() of this step ran (u_old, v_old set)
