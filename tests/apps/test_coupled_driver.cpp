@@ -236,14 +236,18 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
 
 TEST_CASE("A coupled run killed and restarted from its checkpoint ends byte for byte like the uninterrupted run",
           "[long][app][coupled][restart]") {
-  for (const bool crack_gas : {false, true}) {  // without and with gas in the cracks (docs/coupling.md)
-    const std::string tag = crack_gas ? "_crack" : "";
+  // Without and with gas in the cracks (docs/coupling.md), and with crack gas under edge pressures that the gas
+  // pays for (the case's own load is the face forces).
+  for (const int variant : {0, 1, 2}) {
+    const bool crack_gas = variant > 0, paid = variant == 2;
+    const std::string tag = paid ? "_paid" : (crack_gas ? "_crack" : "");
     const fs::path a = fresh_dir("restart_a" + tag), b = fresh_dir("restart_b" + tag);
     auto config = [&](const fs::path& out, std::vector<std::string> extra) {
       std::vector<std::string> o = small_case(out);
       o.push_back("time.end=4e-5");
       o.push_back("output.interval=2e-5");  // snapshots, and checkpoints, at 0, 20 and 40 us
       o.push_back(crack_gas ? "crack_gas.enabled=true" : "crack_gas.enabled=false");
+      if (paid) o.push_back("coupling.gas_load=\"edges_paid\"");
       o.insert(o.end(), extra.begin(), extra.end());
       return app::read_case(app::load_input(single_hole_toml, o));
     };
@@ -270,8 +274,8 @@ TEST_CASE("A coupled run killed and restarted from its checkpoint ends byte for 
     }
     const double crack_mass = last_row(a / "coupling_series.csv").at("crack_gas_mass_kg_per_m");
     std::printf("restart%s: %ld steps; killed at step %ld, restarted from the 20 us checkpoint; %zu files identical; "
-                "crack gas %.3e kg/m\n", crack_gas ? " with crack gas" : "", total_steps, total_steps - 3, files.size(),
-                crack_mass);
+                "crack gas %.3e kg/m\n", paid ? " with crack gas, paid edge pressures" : (crack_gas ? " with crack gas" : ""),
+                total_steps, total_steps - 3, files.size(), crack_mass);
     if (crack_gas) CHECK(crack_mass > 0);  // the cracks held gas across the checkpoint
     else CHECK(crack_mass == 0);
     // A checkpoint of another case is refused, naming the difference.
