@@ -135,10 +135,18 @@ int main(int argc, char** argv) {
         // the work over the step: the face velocities kept (copied) and the nodes kept, then per cell its two
         // owners, face velocities kept and imposed, P, rho, e (read and written) and mask (the records of the
         // loaded faces, a band along the rock's surface, left out)
+        // (with paid edge pressures only the face velocities and the nodes kept)
         {"coupling face forces", {"ibm.face_load", "ibm.face_work"}, 0,
          load == ibm::GasLoad::face_forces
              ? 3 * tri * 16 + cells * 2 * (4 + 8 + 1) + cells * 2 * 16 + nodes * 4 * 16 +
                    cells * (2 * 4 + 2 * 8 + 2 * 8 + 8 + 8 + 16 + 1)
+             : (load == ibm::GasLoad::edge_pressures_paid ? cells * 2 * 16 + nodes * 4 * 16 : 0)},
+        // paid edge pressures: per cell its two flags, face velocities kept and imposed, P, rho, e (read and
+        // written) and mask; per slot its source, pressure given, exposure, the two nodes' motion now and kept,
+        // and key, record and work written, read back once sorted (the sort and the charged cells left out)
+        {"coupling edge work", {"ibm.edge_work"}, 0,
+         load == ibm::GasLoad::edge_pressures_paid
+             ? cells * (2 * 1 + 2 * 8 + 2 * 8 + 8 + 8 + 16 + 1) + 3 * tri * (4 + 8 + 8 + 1 + 2 * 8 * 8 + 2 * (4 + 4 + 8))
              : 0},
     };
     double other = 0, total = 0;

@@ -1,11 +1,9 @@
 //! \file test_edge_work.cpp
 //! \brief GasLoad::edge_pressures_paid (docs/coupling.md "Edge pressures that the gas pays for"; docs/validation.md
 //! I9): the edges' work as the coupling charges it (EdgeWorkKernel) against the rock's own ledger of the pressure
-//! work, and the coupled budget of a block in non-uniform gas closing at the transport's Courant number.
+//! work. The coupled budgets with this load are asserted in test_coupling.cpp ("Coupled energy", "Rock subcycling").
 #include "blastsim/core/backend.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
-#include "blastsim/ibm/budget.hpp"
-#include "blastsim/ibm/coupler.hpp"
 #include "blastsim/ibm/gas_load_kernels.hpp"
 #include "catch.hpp"
 
@@ -52,12 +50,13 @@ double kernel_work(fdem::RockSolver& rock, const DeviceVector<double>& x0, const
 TEST_CASE("I9 paid edge pressures: the edges' work as the coupling charges it equals the rock's ledger",
           "[ibm][I9][edge_work]") {
   // The block pushed on its left half by 20 MPa and on the rest by 1 MPa, so it accelerates, turns and deforms;
-  // after warm-up steps (the ledger's trapezoid needs a previous step), one coupled step of K substeps is counted
+  // after warm-up steps of 0.35 of the stable step (the ledger's trapezoid weighs the first substep's start with
+  // the previous step, here a different one), one coupled step of K substeps of 0.5 of it is counted
   // by the kernel (the force on each edge taken on the geometry half way along the ledger's path) and by the rock's
   // node ledger (its force on the geometry at each substep's start). The two differ where the path bends (the
   // nodes accelerate) and the edges turn over the step: a few 1e-7 to 1e-6 of the work here. Bound 1e-5 at 10 and
-  // 20 substeps: a displacement counted wrongly (the ledger's half steps at either end, a node, a sign) is off by
-  // several per cent.
+  // 20 substeps: a displacement counted wrongly (the ledger's half steps at either end, the two steps swapped, a
+  // node, a sign) is off by more than 1 % (measured with the test changed: 1.5-4 %).
   for (const int K : {20, 10}) {
     fdem::RockSolver rock(turned_block(), fdem::RockMaterial::paper_table2(), fdem::RockOptions{});
     const std::vector<std::uint8_t> exposed = rock.edge_exposure();
@@ -72,7 +71,7 @@ TEST_CASE("I9 paid edge pressures: the edges' work as the coupling charges it eq
     rock.set_edge_pressure(left, 2e7);
     rock.set_edge_pressure(rest, 1e6);
     const double dt = 0.5 * rock.stable_dt();
-    for (int k = 0; k < 40; ++k) rock.step(dt);
+    for (int k = 0; k < 57; ++k) rock.step(0.35 * rock.stable_dt());
     const fdem::RockSnapshot start = rock.snapshot();
     DeviceVector<double> x0, y0, vx0, vy0;
     copy_from_host(x0, start.x), copy_from_host(y0, start.y), copy_from_host(vx0, start.vx), copy_from_host(vy0, start.vy);

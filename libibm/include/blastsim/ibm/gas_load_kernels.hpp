@@ -165,7 +165,8 @@ struct CellPressureWork {
 
 //! GasLoad::edge_pressures_paid, per cell after the rock's substeps: an active cell takes back the work its energy
 //! equation did at its prescribed faces in the gas step (FaceStepMotion), P A at each: the gas then loses to the
-//! rock exactly what EdgeWorkChargeKernel charges, the rock's own count of the edges' work.
+//! rock what EdgeWorkChargeKernel charges, the rock's own count of the edges' work (docs/coupling.md for what
+//! is not paid: ambient-loaded edges, slots whose crack changes kind within a step, outflow boundary faces).
 struct PrescribedFaceRefundKernel {
   Field2D<const std::uint8_t> u_prescribed, v_prescribed;
   FaceStepMotion motion;

@@ -24,8 +24,6 @@ enum class GasLoad {
   //! as the rock's ledger counts it (docs/coupling.md "Edge pressures that the gas pays for").
   edge_pressures_paid,
 };
-//! True for the two edge-pressure loads.
-inline bool loads_edges(GasLoad load) { return load != GasLoad::face_forces; }
 //! "edges", "faces" or "edges_paid" (the driver's `coupling.gas_load`).
 const char* gas_load_name(GasLoad load);
 //! The face-point rule that goes with a load: face forces need the faces to move with the surface they load.
@@ -33,7 +31,7 @@ FacePointRule face_point_rule(GasLoad load);
 //! The default Courant number of a coupled run: the transport's (cip::recommended_courant()), and the paper's
 //! with its edge pressures, whose energy budget holds at the paper's number only when the rock subcycles
 //! (docs/performance.md, "The Courant number"). Face forces and paid edge pressures pay the rock's work over the
-//! substeps exactly.
+//! substeps (docs/coupling.md).
 inline double recommended_courant(cip::Transport t, GasLoad load) {
   return load == GasLoad::edge_pressures ? cip::kPaperCourant : cip::recommended_courant(t);
 }
