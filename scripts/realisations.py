@@ -2,9 +2,10 @@
 """Run one blastsim case N times on perturbed meshes and gather the spread of its main results.
 
 Usage: scripts/realisations.py CASE.toml N [--jitter F] [--rotate] [--strength-seed] [--out DIR] [--blastsim PATH]
-                               [--resume] [--collect-only] [section.key=value ...]
+                               [--resume] [--collect-only] [--jobs J] [section.key=value ...]
 
-Realisation K (K = 1..N) runs, one after another,
+Realisation K (K = 1..N) runs, one after another (J at once with --jobs J: each then with OMP_NUM_THREADS = cores / J
+unless the environment sets it),
     blastsim -q CASE.toml rock.mesh.jitter=F rock.mesh.seed=K output.directory=DIR/seed_K [section.key=value ...]
 with F = 0.03 unless --jitter says otherwise (--jitter 0 keeps the mesh; --rotate also turns the mesh of a disc
 shape about its centre, rock.mesh.rotation = rotation_deg(K), so that the polygons of its circles sit differently
@@ -25,12 +26,15 @@ run reached, and writes
 Needs only Python 3 (/usr/bin/python3).
 """
 import argparse
+import concurrent.futures
 import csv
 import math
+import os
 import re
 import statistics
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -101,7 +105,10 @@ def run_all(args, out):
     if not blastsim.exists():
         sys.exit(f"realisations: no blastsim at {blastsim} (build it, or pass --blastsim)")
     end = end_time(args.case, args.overrides)
-    failed = []
+    env = dict(os.environ)
+    if args.jobs > 1 and "OMP_NUM_THREADS" not in env:  # the cores shared among the runs at once
+        env["OMP_NUM_THREADS"] = str(max(1, (os.cpu_count() or 1) // args.jobs))
+    todo = []
     for k in range(1, args.n + 1):
         folder = out / f"seed_{k}"
         if args.resume and complete(folder, end):
@@ -114,15 +121,27 @@ def run_all(args, out):
             command.append(f"rock.mesh.rotation={rotation_deg(k)}")
         if args.strength_seed:
             command.append(f"rock.heterogeneity.seed={k}")
-        print(f"[{k}/{args.n}] seed {k}: running into {folder} ...", end=" ", flush=True)
+        todo.append((k, folder, command))
+    lock = threading.Lock()
+
+    def run_one(item):
+        k, folder, command = item
+        with lock:
+            print(f"[{k}/{args.n}] seed {k}: running into {folder}" + (" ..." if args.jobs == 1 else ""),
+                  end=" " if args.jobs == 1 else "\n", flush=True)
         start = time.monotonic()
         with open(folder / "blastsim.log", "w") as log:
-            rc = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT).returncode
-        print(f"{'done' if rc == 0 else f'FAILED (exit {rc})'} in {time.monotonic() - start:.0f} s", flush=True)
-        if rc != 0:
-            failed.append(k)
-            print(f"  see {folder / 'blastsim.log'}", flush=True)
-    return failed
+            rc = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=env).returncode
+        with lock:
+            prefix = "" if args.jobs == 1 else f"[{k}/{args.n}] seed {k}: "
+            print(f"{prefix}{'done' if rc == 0 else f'FAILED (exit {rc})'} in {time.monotonic() - start:.0f} s", flush=True)
+            if rc != 0:
+                print(f"  see {folder / 'blastsim.log'}", flush=True)
+        return k, rc
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        results = list(pool.map(run_one, todo))
+    return sorted(k for k, rc in results if rc != 0)
 
 
 def event_time(summary_text, label):
@@ -225,10 +244,15 @@ def main():
     p.add_argument("--out", help="folder of the runs (default realisations_<case stem>)")
     p.add_argument("--blastsim", help="the driver (default build-cpu/apps/blastsim/blastsim of this repository)")
     p.add_argument("--resume", action="store_true", help="skip seeds whose run already reached time.end")
+    p.add_argument("--jobs", type=int, default=1,
+                   help="runs at once (default 1); with more than one and OMP_NUM_THREADS unset, each run gets "
+                        "OMP_NUM_THREADS = cores / jobs (at least 1)")
     p.add_argument("--collect-only", action="store_true", help="run nothing; rebuild the tables from the folders")
     args = p.parse_intermixed_args()
     if args.n < 1:
         p.error("N must be at least 1")
+    if args.jobs < 1:
+        p.error("--jobs must be at least 1")
     bad = [o for o in args.overrides if "=" not in o]
     if bad:
         p.error(f"overrides must read section.key=value: {' '.join(bad)}")
