@@ -141,13 +141,12 @@ int main(int argc, char** argv) {
              ? 3 * tri * 16 + cells * 2 * (4 + 8 + 1) + cells * 2 * 16 + nodes * 4 * 16 +
                    cells * (2 * 4 + 2 * 8 + 2 * 8 + 8 + 8 + 16 + 1)
              : (load == ibm::GasLoad::edge_pressures_paid ? cells * 2 * 16 + nodes * 4 * 16 : 0)},
-        // paid edge pressures: per cell its two flags, face velocities kept and imposed, P, rho, e (read and
-        // written) and mask; per slot its source, pressure given, exposure, the two nodes' motion now and kept,
-        // and key, record and work written, read back once sorted (the sort and the charged cells left out)
+        // paid edge pressures, what every cell and slot must touch: per cell its mask and two prescribed flags
+        // (the velocities, P, rho and e only beside the rock, left out); per slot its source and exposure, the
+        // key, record and work written and the key read back once sorted (the exposed slots' nodes, the sort and
+        // the charged cells left out)
         {"coupling edge work", {"ibm.edge_work"}, 0,
-         load == ibm::GasLoad::edge_pressures_paid
-             ? cells * (2 * 1 + 2 * 8 + 2 * 8 + 8 + 8 + 16 + 1) + 3 * tri * (4 + 8 + 8 + 1 + 2 * 8 * 8 + 2 * (4 + 4 + 8))
-             : 0},
+         load == ibm::GasLoad::edge_pressures_paid ? cells * (1 + 2) + 3 * tri * (4 + 1 + 4 + 4 + 8 + 4) : 0},
     };
     double other = 0, total = 0;
     for (const auto& [label, e] : prof.entries()) {

@@ -61,31 +61,25 @@ void GasLoading::load_rock(CouplingContext& ctx) {
                                     ctx.ambient_pressure, faces, paid ? device_ptr(ew.source) : nullptr,
                                     paid ? device_ptr(ew.loaded) : nullptr});
   if (!faces && !paid) return;
-  detail::FaceWorkArrays& a = *a_;
-  if (paid) {  // the rock's nodes before its substeps, for the edges' work over the step (after_rock())
-    loaded_ = started_ && ctx.gas.steps() > 0;
-    if (!loaded_) return;
-    keep_nodes(ctx);
-    return;
+  if (faces) {
+    detail::FaceWorkArrays& a = *a_;
+    const PaddedShape sh = g.padded_shape();
+    if (a.record_u.size() != static_cast<size_t>(sh.size())) {  // once: every record marked as no load's
+      const FaceLoadRecord none{{{0.0, 0.0, 0.0}, 0.0, 0.0}, -1.0};
+      a.record_u.assign(sh.size(), none);
+      a.record_v.assign(sh.size(), none);
+    }
+    stamp_ = static_cast<double>(ctx.gas.steps());
+    for_each_index("ibm.face_load", static_cast<index_t>(rock.triangle_count),
+                   FaceLoadKernel{rock, g, mat, ctx.gas.material_fields(), ib.cell_active, s.rho.f, s.e.f,
+                                  ctx.owners, Field2D<const double>{ctx.gas.pressure_with_viscosity().data, sh},
+                                  ctx.gas.steps() > 0, ctx.owner_margin, make_field_view(a.record_u, sh),
+                                  make_field_view(a.record_v, sh), stamp_});
   }
-  const PaddedShape sh = g.padded_shape();
-  if (a.record_u.size() != static_cast<size_t>(sh.size())) {  // once: every record marked as no load's
-    const FaceLoadRecord none{{{0.0, 0.0, 0.0}, 0.0, 0.0}, -1.0};
-    a.record_u.assign(sh.size(), none);
-    a.record_v.assign(sh.size(), none);
-  }
-  const double stamp = static_cast<double>(ctx.gas.steps());
-  for_each_index("ibm.face_load", static_cast<index_t>(rock.triangle_count),
-                 FaceLoadKernel{rock, g, mat, ctx.gas.material_fields(), ib.cell_active, s.rho.f, s.e.f,
-                                ctx.owners, Field2D<const double>{ctx.gas.pressure_with_viscosity().data, sh},
-                                ctx.gas.steps() > 0, ctx.owner_margin, make_field_view(a.record_u, sh),
-                                make_field_view(a.record_v, sh), stamp});
   // The rock's nodes before its substeps, for the work over the step (after_rock()); only after a gas step,
   // whose P the loads used and whose energy equation counted the faces' velocities.
   loaded_ = started_ && ctx.gas.steps() > 0;
-  if (!loaded_) return;
-  keep_nodes(ctx);
-  stamp_ = stamp;
+  if (loaded_) keep_nodes(ctx);
 }
 
 void GasLoading::keep_nodes(CouplingContext& ctx) {
