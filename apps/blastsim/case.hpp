@@ -144,7 +144,7 @@ struct MonitorSettings {
 
 //! [coupling], [crack_gas] and [[charge]] (coupled cases).
 struct CouplingSettings {
-  ibm::GasLoad gas_load = ibm::GasLoad::edge_pressures;  //!< coupling.gas_load: "edges", "faces" or "edges_paid"
+  ibm::GasLoad gas_load = ibm::GasLoad::edge_pressures_paid;  //!< coupling.gas_load: "edges_paid", "edges" or "faces"
   bool crack_gas = false;                                //!< crack_gas.enabled
   ibm::CrackGasOptions crack_gas_options;
   std::vector<ibm::Charge> charges;  //!< [[charge]], their holes first among the mesh's holes

@@ -11,7 +11,7 @@ namespace blastsim::app {
 void read_coupling(TableReader& root, Case& c) {
   CouplingSettings& k = c.coupling;
   TableReader coupling = root.table("coupling");
-  const std::string load = coupling.text("gas_load", {"edges", "faces", "edges_paid"}, std::string("edges"));
+  const std::string load = coupling.text("gas_load", {"edges", "faces", "edges_paid"}, std::string("edges_paid"));
   k.gas_load = load == "faces" ? ibm::GasLoad::face_forces
                                : (load == "edges_paid" ? ibm::GasLoad::edge_pressures_paid : ibm::GasLoad::edge_pressures);
   coupling.finish();
