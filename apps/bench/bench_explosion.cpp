@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
   std::string field_path;
   int field_n = 0;
   double ring_width = 0;  // 0: no split
+  bool profile = false;   // each kernel's synchronised wall time (KernelProfile), printed after each grid
   cip::GasSolverOptions options;  // the solver's defaults unless --predictor= / --viscosity= say otherwise
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -112,6 +113,10 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "--rings=%s: the ring width must be positive\n", arg.substr(8).c_str());
         return 2;
       }
+    } else if (arg == "--profile") {
+      profile = true;
+    } else if (arg == "--fused" || arg == "--separate") {
+      options.fusion = arg == "--fused" ? cip::KernelFusion::fused : cip::KernelFusion::separate;
     } else if (arg == "--predictor=on" || arg == "--predictor=off") {
       options.pressure_predictor = arg == "--predictor=on";
     } else if (arg.rfind("--viscosity=", 0) == 0) {
@@ -126,8 +131,11 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: %s [--sizes=100,200,...] [--courant=C] [--rings[=W]] [--predictor=on|off] [--viscosity=C1,C2]\n"
+                   "          [--profile] [--fused|--separate]\n"
                    "       %s --openfoam-rho=CASE/TIME/rho --n=N [--rings[=W]]   (L1 of an N x N field over [-1, 1]^2)\n"
                    "--rings[=W]: the L1 split over rings of width W in radius (default 0.05)\n"
+                   "--profile: each kernel's wall time (launches synchronised) after each grid's line\n"
+                   "--fused|--separate: kernel groups as one launch or one launch a kernel (default: the backend's)\n"
                    "--predictor=on|off: gas.pressure_predictor; --viscosity=C1,C2: the artificial viscosity's linear and\n"
                    "  quadratic coefficients (default: the solver's: on, 0.25,0.5)\n",
                    argv[0], argv[0]);
@@ -160,15 +168,19 @@ int main(int argc, char** argv) {
       const double rho = in ? 1.0 : 0.125, p = in ? 1.0 : 0.1;
       return cip::GasPoint{rho, eos.internal_energy(rho, p), 0.0, 0.0};
     });
+    KernelProfile::instance().reset();
+    KernelProfile::instance().enable(profile);
     const auto t0 = Clock::now();
     test::run_to(s, 0.25, c);  // as test G2
     synchronize();
     const long long steps = s.steps();
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    KernelProfile::instance().enable(false);
     const cip::HostGasFields h = s.to_host();
     std::printf("%6d %8.3f %7lld %10.3f %14.4e %12.4e\n", n, c, steps, seconds,
                 static_cast<double>(n) * n * steps / seconds, density_l1(h.rho, n, ref));
     if (ring_width > 0) print_l1_rings(h.rho, n, ref, ring_width);
+    if (profile) std::printf("%s", KernelProfile::instance().report().c_str());
     std::fflush(stdout);
   }
   return 0;

@@ -21,6 +21,17 @@
 #define BLAST_UNROLL
 #endif
 
+//! Inlines a small device function into every caller on host threads too (GCC keeps a helper that several
+//! kernels call out of line, and its call then breaks the kernel's loop over cells); nvcc inlines device code
+//! itself. Inlining changes no arithmetic, so the bytes stay the same.
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
+#define BLAST_INLINE __attribute__((always_inline)) inline
+#define BLAST_FLATTEN __attribute__((flatten))
+#else
+#define BLAST_INLINE inline
+#define BLAST_FLATTEN
+#endif
+
 namespace blastsim {
 
 using index_t = std::int64_t;
