@@ -132,13 +132,42 @@ inline auto launch_policy() {
 }
 }  // namespace detail
 
-//! Runs f(i) for i in [0, n). `label` names the kernel for profilers and error messages.
+#if !defined(__CUDACC__)
+namespace detail {
+//! One host thread's share [b, e) of an index loop, with f and everything it calls inlined into the loop (GCC's
+//! `flatten`; it otherwise keeps the larger kernels and their helpers out of line).
+template <class F>
+BLAST_FLATTEN void run_range(index_t b, index_t e, const F& f) {
+  for (index_t k = b; k < e; ++k) f(k);
+}
+//! Thread t's share [b, e) of [0, n) split into equal contiguous blocks (OpenMP's static schedule).
+inline void thread_block(index_t n, index_t& b, index_t& e) {
+  const index_t threads = omp_get_num_threads(), t = omp_get_thread_num();
+  const index_t chunk = (n + threads - 1) / threads;
+  b = t * chunk < n ? t * chunk : n;
+  e = b + chunk < n ? b + chunk : n;
+}
+}  // namespace detail
+#endif
+
+//! Runs f(i) for i in [0, n). `label` names the kernel for profilers and error messages. On host threads each
+//! thread runs one contiguous block of i in order; every call of f is independent, so the split does not
+//! change the bytes.
 template <class F>
 void for_each_index(const char* label, index_t n, F f) {
   if (n <= 0) return;
   ++LaunchCounts::instance().launches;
   KernelProfile::instance().time(label, [&] {
+#if defined(__CUDACC__)
     thrust::for_each_n(detail::launch_policy(), thrust::counting_iterator<index_t>(0), n, f);
+#else
+#pragma omp parallel
+    {
+      index_t b, e;
+      detail::thread_block(n, b, e);
+      detail::run_range(b, e, f);
+    }
+#endif
   });
 }
 
@@ -190,10 +219,9 @@ void for_each_cell(const char* label, int i0, int i1, int j0, int j1, F f) {
   KernelProfile::instance().time(label, [&] {
 #pragma omp parallel
     {
-      const int threads = omp_get_num_threads(), t = omp_get_thread_num();
-      const int rows = (nj + threads - 1) / threads;
-      const int jb = j0 + t * rows, je = jb + rows < j1 ? jb + rows : j1;
-      detail::run_rows(i0, i1, jb, je, f);
+      index_t b, e;
+      detail::thread_block(nj, b, e);
+      detail::run_rows(i0, i1, j0 + static_cast<int>(b), j0 + static_cast<int>(e), f);
     }
   });
 #endif
