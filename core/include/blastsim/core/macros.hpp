@@ -21,14 +21,14 @@
 #define BLAST_UNROLL
 #endif
 
-//! Inlines a small device function into every caller on host threads too (GCC keeps a helper that several
-//! kernels call out of line, and its call then breaks the kernel's loop over cells); nvcc inlines device code
-//! itself. Inlining changes no arithmetic, so the bytes stay the same.
-#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
-#define BLAST_INLINE __attribute__((always_inline)) inline
+//! Inlines everything a host loop calls into that loop (GCC's `flatten`, on backend.hpp's host loops): GCC
+//! otherwise keeps the larger kernels and their helpers out of line, a call in every cell. nvcc inlines device
+//! code itself. Inlining changes no arithmetic, so the bytes stay the same. Only in optimised builds without
+//! AddressSanitizer: debug and sanitizer builds keep their calls, and their compile time.
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__) && defined(__OPTIMIZE__) && \
+    !defined(__SANITIZE_ADDRESS__)
 #define BLAST_FLATTEN __attribute__((flatten))
 #else
-#define BLAST_INLINE inline
 #define BLAST_FLATTEN
 #endif
 
