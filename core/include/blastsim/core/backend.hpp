@@ -191,22 +191,24 @@ struct Transformed {
 
 #if !defined(__CUDACC__)
 namespace detail {
-//! One host thread's rows [jb, je) of a cell loop, with f and everything it calls inlined into the loop
-//! (GCC's `flatten`: it otherwise keeps the larger kernels and their helpers out of line).
+//! Row j0 + r of a cell loop, i in order: the host's unit of work in for_each_cell() (for_each_index() over rows).
 template <class F>
-BLAST_FLATTEN void run_rows(int i0, int i1, int jb, int je, const F& f) {
-  for (int j = jb; j < je; ++j)
+struct RowOfCells {
+  int i0, i1, j0;
+  F f;
+  void operator()(index_t r) const {
+    const int j = j0 + static_cast<int>(r);
     for (int i = i0; i < i1; ++i) f(i, j);
-}
+  }
+};
 }  // namespace detail
 #endif
 
 //! Runs f(i, j) for i in [i0, i1), j in [j0, j1), with i fastest (AMReX ParallelFor style). On the GPU one
 //! thread per (i, j); on host threads the rows are shared among the threads and each runs its rows' i in order
-//! (AMReX's and Kokkos's host loops: no index division per cell, and the compiler sees the inner loop; one call
-//! site of f, so that it is inlined into the loop: a second path for short boxes cost 7 % of the gas step).
-//! The boxes with few rows are ghost strips, a fraction of a percent of a step. Every call of f is independent,
-//! so either gives the same bytes.
+//! (AMReX's and Kokkos's host loops: no index division per cell, and the compiler sees the inner loop, into which
+//! for_each_index() inlines f). The boxes with few rows are ghost strips, a fraction of a percent of a step. Every
+//! call of f is independent, so either gives the same bytes.
 template <class F>
 void for_each_cell(const char* label, int i0, int i1, int j0, int j1, F f) {
   const int ni = i1 - i0;
@@ -215,15 +217,7 @@ void for_each_cell(const char* label, int i0, int i1, int j0, int j1, F f) {
 #if defined(__CUDACC__)
   for_each_index(label, static_cast<index_t>(ni) * nj, detail::Flatten2D<F>{i0, j0, ni, f});
 #else
-  ++LaunchCounts::instance().launches;
-  KernelProfile::instance().time(label, [&] {
-#pragma omp parallel
-    {
-      index_t b, e;
-      detail::thread_block(nj, b, e);
-      detail::run_rows(i0, i1, j0 + static_cast<int>(b), j0 + static_cast<int>(e), f);
-    }
-  });
+  for_each_index(label, nj, detail::RowOfCells<F>{i0, i1, j0, f});
 #endif
 }
 
