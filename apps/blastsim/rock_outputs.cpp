@@ -201,6 +201,17 @@ void RockOutputs::analyse(const fdem::RockSnapshot& s, const std::vector<int>& l
           out << fmt::format("{:.9e},{},{},{},{:.9e}\n", analysed_at_, k, q * 360 / fdem::kRoseSectors,
                              (q + 1) * 360 / fdem::kRoseSectors, zones_[k].crack_rose[q]);
     });
+  if (!zones_.empty())  // damage_profile_NNNNNN.csv: each hole's rings, their broken length and fracture intensity
+    write_atomically((dir_ / fmt::format("damage_profile_{:06d}.csv", index_)).string(), [&](std::ostream& out) {
+      out << "time_s,hole,inner_radius_m,outer_radius_m,joint_length_m,broken_length_m,broken_fraction,rock_area_m2,"
+             "p21_per_m\n";
+      for (size_t k = 0; k < zones_.size(); ++k)
+        for (const fdem::DamageRing& r : zones_[k].rings)  // a ring without joints or rock: empty ratio fields
+          out << fmt::format("{:.9e},{},{:.9e},{:.9e},{:.9e},{:.9e},{},{:.9e},{}\n", analysed_at_, k, r.inner_radius,
+                             r.outer_radius, r.joint_length, r.broken_length,
+                             r.joint_length > 0 ? fmt::format("{:.9e}", r.broken_length / r.joint_length) : "",
+                             r.rock_area, r.rock_area > 0 ? fmt::format("{:.9e}", r.broken_length / r.rock_area) : "");
+    });
   if (probes_) {  // ppv.csv: the peak so far at each probe, with its distance from the first hole
     const std::vector<fdem::ProbeSample> p = solver_.probe_samples();
     write_atomically((dir_ / "ppv.csv").string(), [&](std::ostream& out) {

@@ -342,32 +342,41 @@ DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& cente
   if (!(ring_width > 0)) throw InputError("damage_zone: ring width = " + std::to_string(ring_width) + " m: must be > 0");
   if (!(crushed_fraction > 0 && crushed_fraction <= 1))
     throw InputError("damage_zone: crushed fraction = " + std::to_string(crushed_fraction) + ": must be in (0, 1]");
-  struct Ring {
-    double length = 0, broken = 0;
-  };
-  std::vector<Ring> rings;
-  for (size_t j = 0; j < s.joint_nodes.size(); ++j) {
-    const int a = s.joint_nodes[j][0], b = s.joint_nodes[j][1];
-    const double mx = 0.5 * (s.x0[a] + s.x0[b]) - center[0], my = 0.5 * (s.y0[a] + s.y0[b]) - center[1];
-    const double r = std::hypot(mx, my);
-    if (r < hole_radius || mx * behind[0] + my * behind[1] < 0) continue;
+  DamageZone z;
+  std::vector<DamageRing>& rings = z.rings;
+  // The ring of a point (px, py) relative to the centre, or -1 outside the hole's side or half plane.
+  const auto ring_of = [&](double px, double py) -> long {
+    const double r = std::hypot(px, py);
+    if (r < hole_radius || px * behind[0] + py * behind[1] < 0) return -1;
     const size_t k = static_cast<size_t>((r - hole_radius) / ring_width);
     if (k >= rings.size()) rings.resize(k + 1);
+    return static_cast<long>(k);
+  };
+  for (size_t j = 0; j < s.joint_nodes.size(); ++j) {
+    const int a = s.joint_nodes[j][0], b = s.joint_nodes[j][1];
+    const long k = ring_of(0.5 * (s.x0[a] + s.x0[b]) - center[0], 0.5 * (s.y0[a] + s.y0[b]) - center[1]);
+    if (k < 0) continue;
     const double len = std::hypot(s.x0[b] - s.x0[a], s.y0[b] - s.y0[a]);
-    rings[k].length += len;
-    if (s.joint_broken[j]) rings[k].broken += len;
+    rings[k].joint_length += len;
+    if (s.joint_broken[j]) rings[k].broken_length += len;
   }
-  DamageZone z;
+  for (size_t t = 0; 3 * t + 2 < s.x0.size(); ++t) {  // node 3t + k is triangle t's corner k
+    const double* x = &s.x0[3 * t];
+    const double* y = &s.y0[3 * t];
+    const long k = ring_of((x[0] + x[1] + x[2]) / 3 - center[0], (y[0] + y[1] + y[2]) / 3 - center[1]);
+    if (k >= 0) rings[k].rock_area += 0.5 * std::fabs((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+  }
+  for (size_t k = 0; k < rings.size(); ++k)
+    rings[k].inner_radius = hole_radius + k * ring_width, rings[k].outer_radius = hole_radius + (k + 1) * ring_width;
   z.center = center, z.hole_radius = hole_radius;
   z.crushed_radius = z.cracked_radius = hole_radius;
   bool crushed = true, cracked = true;
   for (size_t k = 0; k < rings.size() && (crushed || cracked); ++k) {
-    if (rings[k].length == 0) continue;  // a ring narrower than the joints' spacing may hold none
-    const double outer = hole_radius + (k + 1) * ring_width;
-    crushed = crushed && rings[k].broken >= crushed_fraction * rings[k].length;
-    cracked = cracked && rings[k].broken > 0;
-    if (crushed) z.crushed_radius = outer;
-    if (cracked) z.cracked_radius = outer;
+    if (rings[k].joint_length == 0) continue;  // a ring narrower than the joints' spacing may hold none
+    crushed = crushed && rings[k].broken_length >= crushed_fraction * rings[k].joint_length;
+    cracked = cracked && rings[k].broken_length > 0;
+    if (crushed) z.crushed_radius = rings[k].outer_radius;
+    if (cracked) z.cracked_radius = rings[k].outer_radius;
   }
   // Crack rose: broken length by the direction of the joint's middle from the centre, within the cracked zone.
   for (size_t j = 0; j < s.joint_nodes.size(); ++j) {

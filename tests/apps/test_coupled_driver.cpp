@@ -85,6 +85,17 @@ TEST_CASE("Driver runs a coupled case: gas, rock and coupling files, and the ene
   for (const char* f : {"fragments_000000.csv", "fragments_000003.csv", "size_distribution.csv", "fragmentation_series.csv",
                         "rock_probes.csv", "ppv.csv"})
     CHECK(fs::exists(out / f));
+  // The damage profile of the last snapshot (the run's end): its rings hold every joint of this disc with a hole,
+  // so their broken lengths add up to the crack length the rock's series gives at the end (7 digits there).
+  const std::map<std::string, std::vector<double>> profile = csv_columns(out / "damage_profile_000003.csv");
+  REQUIRE(profile.count("broken_length_m") == 1);
+  double profile_broken = 0;
+  for (double b : profile.at("broken_length_m")) profile_broken += b;
+  const double crack_length = last_row(out / "rock_series.csv").at("crack_length_m");
+  std::printf("coupled driver: damage profile %zu rings, broken %.6e m; rock series crack length %.6e m\n",
+              profile.at("broken_length_m").size(), profile_broken, crack_length);
+  CHECK(profile.at("time_s").front() == Approx(3e-5));
+  CHECK(std::fabs(profile_broken - crack_length) <= 1e-6 * crack_length + 1e-12);
   const std::map<std::string, double> frag = last_row(out / "fragmentation_series.csv");
   CHECK(frag.at("fragments") >= 1);
   CHECK(frag.at("hole0_cracked_radius_m") >= 0.02);  // at least the hole radius

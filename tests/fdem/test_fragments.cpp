@@ -298,4 +298,39 @@ TEST_CASE("A5: damage per triangle and the crushed and cracked zones around a ho
       if (topo.joints[j].triangle_a == t || topo.joints[j].triangle_b == t) expected = 1;
     CHECK(d[t] == expected);
   }
+  // Damage profile: each ring's broken length is the length of the joints broken above whose midpoints lie in it
+  // (rings of w from the wall, counted here from the test's own list); every ring inside r1 is broken whole, none
+  // beyond r2 holds a broken joint, and the rings' rock areas add up to the mesh's area (every triangle's centroid
+  // lies outside the hole).
+  std::vector<double> expected_broken(z.rings.size(), 0.0);
+  for (int j : broken) {
+    const int n0 = snap.joint_nodes[j][0], n1 = snap.joint_nodes[j][1];
+    const double r = std::hypot(0.5 * (snap.x0[n0] + snap.x0[n1]), 0.5 * (snap.y0[n0] + snap.y0[n1]));
+    const size_t k = static_cast<size_t>((r - a) / w);
+    REQUIRE(k < expected_broken.size());
+    expected_broken[k] += std::hypot(snap.x0[n1] - snap.x0[n0], snap.y0[n1] - snap.y0[n0]);
+  }
+  double mesh_area = 0, ring_area = 0;
+  for (size_t t = 0; 3 * t + 2 < snap.x0.size(); ++t) {
+    const double* x = &snap.x0[3 * t];
+    const double* y = &snap.y0[3 * t];
+    mesh_area += 0.5 * std::fabs((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+  }
+  for (size_t k = 0; k < z.rings.size(); ++k) {
+    const DamageRing& g = z.rings[k];
+    ring_area += g.rock_area;
+    CHECK(std::fabs(g.broken_length - expected_broken[k]) <= 1e-12 * (1 + expected_broken[k]));
+    CHECK(std::fabs(g.inner_radius - (a + k * w)) <= 1e-15);
+    if (g.outer_radius <= r1) CHECK(g.broken_length == g.joint_length);
+    if (g.inner_radius >= r2 + h) CHECK(g.broken_length == 0.0);
+  }
+  const DamageRing& inner = z.rings.front();
+  const DamageRing& crack_ring = z.rings[static_cast<size_t>((0.5 * (r1 + r2) - a) / w)];
+  std::printf("A5: damage profile: %zu rings; rock area %.6f m2 (mesh %.6f, annulus %.6f); P21 %.2f 1/m in the "
+              "first ring (the mesh's own %.2f), %.2f 1/m in the ring at %.2f-%.2f m on the crack\n",
+              z.rings.size(), ring_area, mesh_area, M_PI * (R * R - a * a), inner.broken_length / inner.rock_area,
+              inner.joint_length / inner.rock_area, crack_ring.broken_length / crack_ring.rock_area,
+              crack_ring.inner_radius, crack_ring.outer_radius);
+  CHECK(std::fabs(ring_area - mesh_area) <= 1e-12 * mesh_area);
+  CHECK(crack_ring.broken_length > 0.0);
 }

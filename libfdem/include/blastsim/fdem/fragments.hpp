@@ -103,13 +103,25 @@ std::vector<double> triangle_damage(const RockSnapshot& s);
 //! Its crack rose: the broken joint length [m] within the cracked zone by the direction of each joint's middle
 //! from the centre, in kRoseSectors sectors of 30 deg counter-clockwise from +x (sector k: [30 k, 30 k + 30)
 //! deg); radial cracks that run along the major principal stress fill the sectors on its axis.
+//! Its damage profile: every ring from the wall out to the farthest joint or triangle, with the joint length it holds, the
+//! broken part of it and the rock's area there (the initial areas of the triangles whose centroids lie in the
+//! ring, in the same half plane). broken_length / rock_area is the ring's fracture intensity P21 [m/m2], the
+//! trace length of fractures per unit area of a section (Dershowitz & Herda 1992, 33rd US Rock Mechanics
+//! Symposium); joint_length / rock_area is the mesh's own, the most a ring can break.
 inline constexpr int kRoseSectors = 12;
+struct DamageRing {
+  double inner_radius = 0, outer_radius = 0;  //!< [m] from the centre
+  double joint_length = 0;                    //!< [m] joints whose initial midpoints lie in the ring
+  double broken_length = 0;                   //!< [m] the broken ones among them
+  double rock_area = 0;                       //!< [m2] initial area of the triangles centred in the ring
+};
 struct DamageZone {
   std::array<double, 2> center{};
   double hole_radius = 0;
   double crushed_radius = 0;
   double cracked_radius = 0;
   std::array<double, kRoseSectors> crack_rose{};
+  std::vector<DamageRing> rings;  //!< ring k spans hole_radius + [k, k + 1) ring_width
 };
 DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& center, double hole_radius, double ring_width,
                        double crushed_fraction = 0.5, const std::array<double, 2>& behind = {0.0, 0.0});
