@@ -13,6 +13,12 @@
 namespace blastsim::fdem {
 
 namespace {
+//! Area [m2] of triangle t from per-node coordinates x, y (node 3t + k is its corner k), positive when its corners
+//! run counter-clockwise, as the mesh's do.
+double triangle_area(const std::vector<double>& x, const std::vector<double>& y, size_t t) {
+  const size_t n = 3 * t;
+  return 0.5 * ((x[n + 1] - x[n]) * (y[n + 2] - y[n]) - (x[n + 2] - x[n]) * (y[n + 1] - y[n]));
+}
 
 using Point = std::array<double, 2>;
 
@@ -187,12 +193,9 @@ std::vector<Fragment> measure_fragments(const RockSnapshot& s, const std::vector
     }
     Fragment& f = out[index[L]];
     const size_t n = 3 * t;
-    auto area = [&](const std::vector<double>& x, const std::vector<double>& y) {
-      return 0.5 * ((x[n + 1] - x[n]) * (y[n + 2] - y[n]) - (x[n + 2] - x[n]) * (y[n + 1] - y[n]));
-    };
-    const double m = density * area(s.x0, s.y0);
+    const double m = density * triangle_area(s.x0, s.y0, t);
     f.triangles += 1;
-    f.area += area(s.x, s.y);
+    f.area += triangle_area(s.x, s.y, t);
     f.mass += m;
     for (int k = 0; k < 3; ++k) {
       f.centroid[0] += m / 3 * s.x[n + k], f.centroid[1] += m / 3 * s.y[n + k];  // lumped node masses m / 3
@@ -364,7 +367,7 @@ DamageZone damage_zone(const RockSnapshot& s, const std::array<double, 2>& cente
     const double* x = &s.x0[3 * t];
     const double* y = &s.y0[3 * t];
     const long k = ring_of((x[0] + x[1] + x[2]) / 3 - center[0], (y[0] + y[1] + y[2]) / 3 - center[1]);
-    if (k >= 0) rings[k].rock_area += 0.5 * std::fabs((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+    if (k >= 0) rings[k].rock_area += triangle_area(s.x0, s.y0, t);
   }
   for (size_t k = 0; k < rings.size(); ++k)
     rings[k].inner_radius = hole_radius + k * ring_width, rings[k].outer_radius = hole_radius + (k + 1) * ring_width;
