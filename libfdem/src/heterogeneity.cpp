@@ -1,5 +1,6 @@
 //! \file heterogeneity.cpp
-//! \brief Random per-joint strength factors (Weibull, log-normal) and the joint properties they give.
+//! \brief Random per-joint strength factors (Weibull, log-normal; independent or from a correlated field) and the
+//! joint properties they give.
 #include "blastsim/fdem/heterogeneity.hpp"
 
 #include "blastsim/core/error.hpp"
@@ -7,6 +8,7 @@
 #include <cmath>
 #include <random>
 #include <sstream>
+#include <string>
 
 namespace blastsim::fdem {
 
@@ -22,15 +24,52 @@ void StrengthHeterogeneity::validate() const {
     os << "cov = " << cov << ": the log-normal coefficient of variation must be a positive number";
   else if (!tensile_strength && !cohesion && !fracture_energy)
     os << "properties: none selected (tensile_strength, cohesion, fracture_energy)";
+  else if (!(correlation_length >= 0 && std::isfinite(correlation_length)))
+    os << "correlation_length = " << correlation_length << " m: must be 0 (independent joints) or a positive length";
   if (!os.str().empty()) throw InputError("rock.heterogeneity." + os.str());
 }
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+//! Uniform in (0, 1] from 53 bits of the generator: never 0, so logarithms of it stay finite.
+double uniform_of(std::mt19937_64& bits) {
+  constexpr double ulp = 1.0 / 9007199254740992.0;  // 2^-53
+  return (static_cast<double>(bits() >> 11) + 1.0) * ulp;
+}
+
+//! The factor of mean 1 of h's distribution at a standard normal value g: X = F^-1(Phi(g)).
+double factor_of_normal(const StrengthHeterogeneity& h, double g) {
+  if (h.distribution == StrengthDistribution::weibull) {
+    // 1 - F(x) = exp(-(x / lambda)^m) = 1 - Phi(g) = erfc(g / sqrt 2) / 2: x = lambda (-ln(1 - Phi(g)))^(1/m).
+    const double m = h.weibull_modulus;
+    const double lambda = 1.0 / std::tgamma(1.0 + 1.0 / m);
+    const double tail = 0.5 * std::erfc(g / std::sqrt(2.0));
+    return lambda * std::pow(-std::log(tail), 1.0 / m);
+  }
+  const double s2 = std::log(1.0 + h.cov * h.cov);
+  return std::exp(-0.5 * s2 + std::sqrt(s2) * g);
+}
+
+//! The material's joint properties with the selected ones times x[j], one joint per factor.
+std::vector<JointProperties> scaled_joints(const RockMaterial& material, const StrengthHeterogeneity& h,
+                                           const std::vector<double>& x) {
+  std::vector<JointProperties> out(x.size(), joint_properties_of(material));
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    if (h.tensile_strength) out[j].tensile_strength *= x[j];
+    if (h.cohesion) out[j].cohesion *= x[j];
+    if (h.fracture_energy) out[j].fracture_energy_mode1 *= x[j], out[j].fracture_energy_mode2 *= x[j];
+  }
+  return out;
+}
+
+}  // namespace
 
 std::vector<double> strength_factors(const StrengthHeterogeneity& h, int count) {
   h.validate();
   std::mt19937_64 bits(h.seed);
-  constexpr double ulp = 1.0 / 9007199254740992.0;  // 2^-53
-  // Uniform in (0, 1]: never 0, so the logarithms below stay finite.
-  auto uniform = [&] { return (static_cast<double>(bits() >> 11) + 1.0) * ulp; };
+  auto uniform = [&] { return uniform_of(bits); };
   std::vector<double> x(count > 0 ? count : 0);
   if (h.distribution == StrengthDistribution::weibull) {
     // Inverse of F(x) = 1 - exp(-(x / lambda)^m) at 1 - u: x = lambda (-ln u)^(1/m); mean lambda Gamma(1 + 1/m).
@@ -52,15 +91,44 @@ std::vector<double> strength_factors(const StrengthHeterogeneity& h, int count) 
 
 std::vector<JointProperties> heterogeneous_joints(const RockMaterial& material, const StrengthHeterogeneity& h,
                                                   int joints) {
-  const std::vector<double> x = strength_factors(h, joints);
-  const JointProperties base = joint_properties_of(material);
-  std::vector<JointProperties> out(x.size(), base);
-  for (std::size_t j = 0; j < x.size(); ++j) {
-    if (h.tensile_strength) out[j].tensile_strength *= x[j];
-    if (h.cohesion) out[j].cohesion *= x[j];
-    if (h.fracture_energy) out[j].fracture_energy_mode1 *= x[j], out[j].fracture_energy_mode2 *= x[j];
+  return scaled_joints(material, h, strength_factors(h, joints));
+}
+
+GaussianField::GaussianField(double correlation_length, std::uint64_t seed)
+    : kx_(kModes), ky_(kModes), phase_(kModes) {
+  if (!(correlation_length > 0 && std::isfinite(correlation_length)))
+    throw InputError("rock.heterogeneity.correlation_length = " + std::to_string(correlation_length) +
+                     " m: a field needs a positive length");
+  std::mt19937_64 bits(seed);
+  // C(r) = exp(-r^2 / l^2) = E[cos(k . r)] for k normal with variance 2 / l^2 per component (its spectral density).
+  const double sigma_k = std::sqrt(2.0) / correlation_length;
+  for (int n = 0; n < kModes; ++n) {
+    const double u1 = uniform_of(bits), u2 = uniform_of(bits);  // Box-Muller: both components from one pair
+    const double radius = sigma_k * std::sqrt(-2.0 * std::log(u1));
+    kx_[n] = radius * std::cos(kTwoPi * u2);
+    ky_[n] = radius * std::sin(kTwoPi * u2);
+    phase_[n] = kTwoPi * uniform_of(bits);
   }
-  return out;
+}
+
+double GaussianField::operator()(double x, double y) const {
+  double sum = 0;
+  for (int n = 0; n < kModes; ++n) sum += std::cos(kx_[n] * x + ky_[n] * y + phase_[n]);
+  return std::sqrt(2.0 / kModes) * sum;
+}
+
+std::vector<double> strength_field(const StrengthHeterogeneity& h, const std::vector<std::array<double, 2>>& points) {
+  h.validate();
+  const GaussianField g(h.correlation_length, h.seed);
+  std::vector<double> x(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) x[i] = factor_of_normal(h, g(points[i][0], points[i][1]));
+  return x;
+}
+
+std::vector<JointProperties> heterogeneous_joints(const RockMaterial& material, const StrengthHeterogeneity& h,
+                                                  const std::vector<std::array<double, 2>>& joint_midpoints) {
+  if (h.correlation_length == 0) return heterogeneous_joints(material, h, static_cast<int>(joint_midpoints.size()));
+  return scaled_joints(material, h, strength_field(h, joint_midpoints));
 }
 
 }  // namespace blastsim::fdem

@@ -175,9 +175,16 @@ RockModel build_rock_model(const RockModelSpec& spec) {
     for (const std::vector<Segment>& set : traces) mesh.joint_lines.insert(mesh.joint_lines.end(), set.begin(), set.end());
   m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
-  const std::vector<JointProperties> joints =
-      spec.heterogeneity ? heterogeneous_joints(spec.material, *spec.heterogeneity, static_cast<int>(m.topology.joints.size()))
-                         : std::vector<JointProperties>{};
+  std::vector<JointProperties> joints;
+  if (spec.heterogeneity) {  // each joint's midpoint, where a correlated strength field is read
+    std::vector<std::array<double, 2>> mid(m.topology.joints.size());
+    for (std::size_t j = 0; j < mid.size(); ++j) {
+      const std::array<double, 2>& p = m.topology.node_positions[m.topology.joints[j].a0];
+      const std::array<double, 2>& q = m.topology.node_positions[m.topology.joints[j].a1];
+      mid[j] = {0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])};
+    }
+    joints = heterogeneous_joints(spec.material, *spec.heterogeneity, mid);
+  }
   m.solver = std::make_unique<RockSolver>(m.topology, spec.material, spec.options, joints);
   RockSolver& solver = *m.solver;
   const FdemTopology& topo = m.topology;

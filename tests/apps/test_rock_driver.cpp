@@ -156,6 +156,11 @@ TEST_CASE("Bad rock input gives one clear error naming the key", "[app][rock][ba
   REQUIRE(het.rock.model.heterogeneity.has_value());
   CHECK(het.rock.model.heterogeneity->weibull_modulus == 4.0);
   CHECK(het.rock.model.heterogeneity->seed == 9u);
+  CHECK(het.rock.model.heterogeneity->correlation_length == 0.0);  // default: independent joints
+  CHECK_THROWS_WITH(read({"rock.heterogeneity.modulus=4", "rock.heterogeneity.correlation_length=-0.01"}),
+                    Catch::Contains("rock.heterogeneity.correlation_length"));
+  CHECK(read({"rock.heterogeneity.modulus=4", "rock.heterogeneity.correlation_length=0.02"})
+            .rock.model.heterogeneity->correlation_length == 0.02);
   CHECK_FALSE(read({}).rock.model.heterogeneity.has_value());
   // A case with both gas and rock is a coupled case.
   toml::table both = app::load_input(brazilian_toml, {});
