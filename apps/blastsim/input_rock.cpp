@@ -249,7 +249,8 @@ void read_rock(TableReader& root, Case& c) {
     het.tensile_strength = h.boolean("tensile_strength", true);
     het.cohesion = h.boolean("cohesion", true);
     het.fracture_energy = h.boolean("fracture_energy", true);
-    het.correlation_length = h.number("correlation_length", "m", Range::non_negative(), 0.0);
+    if (h.has("correlation_length"))  // read only when given: a case without it echoes as before (restart)
+      het.correlation_length = h.number("correlation_length", "m", Range::non_negative());
     h.finish();
     if (!het.tensile_strength && !het.cohesion && !het.fracture_energy)
       throw InputError(h.path() + ": tensile_strength, cohesion and fracture_energy are all false; set one to true "

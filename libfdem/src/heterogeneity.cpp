@@ -42,11 +42,14 @@ double uniform_of(std::mt19937_64& bits) {
 //! The factor of mean 1 of h's distribution at a standard normal value g: X = F^-1(Phi(g)).
 double factor_of_normal(const StrengthHeterogeneity& h, double g) {
   if (h.distribution == StrengthDistribution::weibull) {
-    // 1 - F(x) = exp(-(x / lambda)^m) = 1 - Phi(g) = erfc(g / sqrt 2) / 2: x = lambda (-ln(1 - Phi(g)))^(1/m).
+    // 1 - F(x) = exp(-(x / lambda)^m) = 1 - Phi(g): x = lambda (-ln(1 - Phi(g)))^(1/m). For g >= 0,
+    // 1 - Phi(g) = erfc(g / sqrt 2) / 2 directly; for g < 0, -ln(1 - Phi(g)) = -log1p(-Phi(g)) with
+    // Phi(g) = erfc(-g / sqrt 2) / 2, which keeps the weak tail's relative precision (x > 0 down to g = -38).
     const double m = h.weibull_modulus;
     const double lambda = 1.0 / std::tgamma(1.0 + 1.0 / m);
-    const double tail = 0.5 * std::erfc(g / std::sqrt(2.0));
-    return lambda * std::pow(-std::log(tail), 1.0 / m);
+    const double z = g / std::sqrt(2.0);
+    const double minus_log_tail = g >= 0 ? -std::log(0.5 * std::erfc(z)) : -std::log1p(-0.5 * std::erfc(-z));
+    return lambda * std::pow(minus_log_tail, 1.0 / m);
   }
   const double s2 = std::log(1.0 + h.cov * h.cov);
   return std::exp(-0.5 * s2 + std::sqrt(s2) * g);

@@ -168,7 +168,7 @@ TEST_CASE("H4 heterogeneity: a correlated strength field has unit variance, the 
           "[fdem][heterogeneity][H4]") {
   // (a) The Gaussian field G on a 128 x 128 grid of spacing l / 2 (64 correlation lengths a side), four seeds.
   // Its sample correlation at lag r along x and y, averaged over the seeds, against exp(-r^2 / l^2). Errors: one
-  // draw of N = 2048 modes departs from the covariance by at most about 1 / sqrt(2 N) = 0.016; the spatial
+  // draw of N = 2048 modes departs from the covariance by about 1 / sqrt(2 N) = 0.016 (a standard deviation); the spatial
   // average over (64 l)^2 adds about sqrt(pi) l / (64 l) = 0.028; over four seeds about 0.016. Tolerance 0.05
   // (3 of those), for the mean 0 and variance 1 alike (0.05 and 0.1).
   const double l = 0.03;
@@ -244,7 +244,7 @@ TEST_CASE("H4 heterogeneity: a correlated strength field has unit variance, the 
   CHECK_THROWS_WITH(h.validate(), Catch::Contains("rock.heterogeneity.correlation_length"));
 }
 
-TEST_CASE("H5 heterogeneity: with a correlation length two meshes of one rock get the same strength where they overlap; "
+TEST_CASE("H5 heterogeneity: with a correlation length two meshes of one rock get the same strength where they overlap, "
           "independent draws do not",
           "[fdem][heterogeneity][H5]") {
   // The same 0.6 x 0.3 m rock meshed with squares of 20 mm and 10 mm (two triangles each), correlation length
@@ -253,7 +253,7 @@ TEST_CASE("H5 heterogeneity: with a correlation length two meshes of one rock ge
   // means follow one another (the field varies over 0.1 m, the block means by about the factor's spread, while
   // the two meshes sample each block's field at 75 and 300 points), so their correlation over the blocks must
   // exceed 0.9; with independent draws they are two unrelated samples (correlation near 0, standard error
-  // about 1 / sqrt(18) = 0.24), and the test asks it to stay below 0.9 as well as the field's to exceed it.
+  // about 1 / sqrt(18) = 0.24), so theirs must stay below 0.7 (near 3 standard errors).
   const RockMaterial mat = RockMaterial::paper_table2();
   StrengthHeterogeneity h;
   h.weibull_modulus = 4;
@@ -283,8 +283,8 @@ TEST_CASE("H5 heterogeneity: with a correlation length two meshes of one rock ge
   const double r_field = correlation_of(block_means(5, true), block_means(10, true));
   const double r_iid = correlation_of(block_means(5, false), block_means(10, false));
   std::printf("H5 block means of f_t on 20 and 10 mm meshes: correlation %.4f with the field (> 0.9), %.4f with "
-              "independent draws (< 0.9)\n",
+              "independent draws (< 0.7)\n",
               r_field, r_iid);
   CHECK(r_field > 0.9);
-  CHECK(r_iid < 0.9);
+  CHECK(r_iid < 0.7);
 }

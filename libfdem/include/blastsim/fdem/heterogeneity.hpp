@@ -60,8 +60,8 @@ std::vector<JointProperties> heterogeneous_joints(const RockMaterial& material, 
 //! by the randomisation (spectral) method (Shinozuka & Deodatis 1991, Appl. Mech. Rev. 44, 191-204):
 //! G(x) = sqrt(2 / N) sum_n cos(k_n . x + phi_n), N = kModes wave vectors k_n drawn from the field's spectral
 //! density (normal, variance 2 / l^2 per component) and phases phi_n uniform in [0, 2 pi), all from the seed.
-//! Over the draws of k and phi, G(x) - G(y) has exactly the field's covariance; one draw's sample covariance
-//! departs from it by at most about 1 / sqrt(2 N). The field is a function of the position only: the same seed
+//! Over the draws of k and phi, G(x) and G(y) have exactly the field's covariance; one draw's covariance departs
+//! from it by about 1 / sqrt(2 N) (a standard deviation). The field is a function of the position only: the same seed
 //! gives the same value at a point on any mesh.
 class GaussianField {
  public:
@@ -72,7 +72,7 @@ class GaussianField {
   std::vector<double> kx_, ky_, phase_;
 };
 
-//! The factor X at each point: the field G of `h.correlation_length` and `h.seed` (> 0 required) mapped onto the
+//! The factor X at each point: the field G of `h.correlation_length` (> 0 required) and `h.seed` mapped onto the
 //! distribution of `h` through the normal distribution function Phi (X = F^-1(Phi(G))), so that X has the
 //! distribution of strength_factors() at every point and the field's correlation over distance.
 std::vector<double> strength_field(const StrengthHeterogeneity& h, const std::vector<std::array<double, 2>>& points);
