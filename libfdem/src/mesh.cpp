@@ -77,6 +77,16 @@ void check_mesh(const TriangleMesh& m) {
   }
 }
 
+std::vector<std::array<double, 2>> joint_midpoints(const FdemTopology& topo) {
+  std::vector<std::array<double, 2>> mid(topo.joints.size());
+  for (std::size_t j = 0; j < mid.size(); ++j) {
+    const std::array<double, 2>& p = topo.node_positions[topo.joints[j].a0];
+    const std::array<double, 2>& q = topo.node_positions[topo.joints[j].a1];
+    mid[j] = {0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])};
+  }
+  return mid;
+}
+
 FdemTopology build_topology(const TriangleMesh& m) {
   check_mesh(m);
   FdemTopology topo;

@@ -175,16 +175,9 @@ RockModel build_rock_model(const RockModelSpec& spec) {
     for (const std::vector<Segment>& set : traces) mesh.joint_lines.insert(mesh.joint_lines.end(), set.begin(), set.end());
   m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
-  std::vector<JointProperties> joints;
-  if (spec.heterogeneity) {  // each joint's midpoint, where a correlated strength field is read
-    std::vector<std::array<double, 2>> mid(m.topology.joints.size());
-    for (std::size_t j = 0; j < mid.size(); ++j) {
-      const std::array<double, 2>& p = m.topology.node_positions[m.topology.joints[j].a0];
-      const std::array<double, 2>& q = m.topology.node_positions[m.topology.joints[j].a1];
-      mid[j] = {0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])};
-    }
-    joints = heterogeneous_joints(spec.material, *spec.heterogeneity, mid);
-  }
+  const std::vector<JointProperties> joints =  // a correlated strength field is read at the joints' midpoints
+      spec.heterogeneity ? heterogeneous_joints(spec.material, *spec.heterogeneity, joint_midpoints(m.topology))
+                         : std::vector<JointProperties>{};
   m.solver = std::make_unique<RockSolver>(m.topology, spec.material, spec.options, joints);
   RockSolver& solver = *m.solver;
   const FdemTopology& topo = m.topology;

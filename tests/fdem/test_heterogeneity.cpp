@@ -260,12 +260,7 @@ TEST_CASE("H5 heterogeneity: with a correlation length two meshes of one rock ge
   h.seed = 3;
   auto block_means = [&](int per_block, bool field) {
     const FdemTopology topo = build_topology(structured_rectangle(6 * per_block, 3 * per_block, 0.0, 0.6, 0.0, 0.3));
-    std::vector<std::array<double, 2>> mid(topo.joints.size());
-    for (std::size_t j = 0; j < mid.size(); ++j) {
-      const auto& p = topo.node_positions[topo.joints[j].a0];
-      const auto& q = topo.node_positions[topo.joints[j].a1];
-      mid[j] = {0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])};
-    }
+    const std::vector<std::array<double, 2>> mid = joint_midpoints(topo);
     StrengthHeterogeneity hh = h;
     hh.correlation_length = field ? 0.1 : 0.0;
     const std::vector<JointProperties> joints = heterogeneous_joints(mat, hh, mid);

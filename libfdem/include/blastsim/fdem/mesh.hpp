@@ -54,6 +54,9 @@ struct FdemTopology {
 //! Builds the FDEM topology (check_mesh() first). Joints and boundary edges come in a deterministic order.
 FdemTopology build_topology(const TriangleMesh& mesh);
 
+//! The midpoint [m] of every joint (of face A's edge, a0 to a1) in the topology's node positions, in joint order.
+std::vector<std::array<double, 2>> joint_midpoints(const FdemTopology& topo);
+
 //! A structured mesh of nx x ny squares over [x0, x1] x [y0, y1], each square cut into two triangles
 //! along alternating diagonals (for tests and simple specimens).
 TriangleMesh structured_rectangle(int nx, int ny, double x0, double x1, double y0, double y1);
