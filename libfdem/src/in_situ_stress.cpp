@@ -58,12 +58,10 @@ JointPreload joint_preload(double normal, double shear, const JointStrength& j) 
     p.opening = j.peak_opening * (1.0 - std::sqrt(1.0 - normal / j.tensile_strength));
   else
     refuse("not below the joint's tensile strength", j.tensile_strength);
-  // Shear: (2 q - q^2) f_s with q = |s| / s_p, f_s = c - sigma tan(phi) under compression, s_p = s_p0 f_s / c.
+  // Shear: elastic, tau = c s / s_p, below the Coulomb cap f_s = c - sigma tan(phi) under compression.
   const double fs = normal < 0.0 ? j.cohesion - normal * j.tan_friction : j.cohesion;
   if (!(std::fabs(shear) < fs)) refuse("|tau| not below the joint's shear strength", fs);
-  const double sp = j.peak_slip * fs / j.cohesion;
-  const double q = 1.0 - std::sqrt(1.0 - std::fabs(shear) / fs);
-  p.slip = (shear < 0.0 ? -q : q) * sp;
+  p.slip = shear * j.peak_slip / j.cohesion;
   return p;
 }
 

@@ -19,17 +19,16 @@ double softening_curve_integral() {
   return value;
 }
 
-double softening_length(double fracture_energy, double strength, double peak) {
-  if (!(fracture_energy > 0) || !(strength > 0) || !(peak >= 0))
-    throw InputError("softening length needs a fracture energy > 0 J/m2, a strength > 0 Pa and a peak separation "
-                     ">= 0 m (got " + std::to_string(fracture_energy) + ", " + std::to_string(strength) + ", " +
-                     std::to_string(peak) + ")");
-  const double pre_peak = 2.0 / 3.0 * strength * peak;
-  if (!(pre_peak < 0.5 * fracture_energy))
-    throw InputError("joint pre-peak energy " + std::to_string(pre_peak) + " J/m2 is not below half the fracture "
+double softening_length(double fracture_energy, double strength, double pre_peak_work) {
+  if (!(fracture_energy > 0) || !(strength > 0) || !(pre_peak_work >= 0))
+    throw InputError("softening length needs a fracture energy > 0 J/m2, a strength > 0 Pa and a pre-peak work "
+                     ">= 0 J/m2 (got " + std::to_string(fracture_energy) + ", " + std::to_string(strength) + ", " +
+                     std::to_string(pre_peak_work) + ")");
+  if (!(pre_peak_work < 0.5 * fracture_energy))
+    throw InputError("joint pre-peak energy " + std::to_string(pre_peak_work) + " J/m2 is not below half the fracture "
                      "energy " + std::to_string(fracture_energy) + " J/m2: use smaller elements or a larger "
-                     "joint_penalty_factor (peak separation 2 h f / p)");
-  return (fracture_energy - pre_peak) / (strength * softening_curve_integral());
+                     "joint_penalty_factor (the pre-peak work grows with h f^2 / p)");
+  return (fracture_energy - pre_peak_work) / (strength * softening_curve_integral());
 }
 
 }  // namespace blastsim::fdem

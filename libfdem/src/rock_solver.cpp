@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -58,9 +59,10 @@ JointStrength joint_strength(const JointProperties& q, double h, double p) {
   s.cohesion = q.cohesion;
   s.tan_friction = std::tan(q.friction_angle);
   s.peak_opening = 2 * h * q.tensile_strength / p;
-  s.peak_slip = 2 * h * q.cohesion / p;
-  s.opening_softening = softening_length(q.fracture_energy_mode1, q.tensile_strength, s.peak_opening);
-  s.slip_softening = softening_length(q.fracture_energy_mode2, q.cohesion, s.peak_slip);
+  s.peak_slip = h * q.cohesion / p;
+  s.opening_softening =
+      softening_length(q.fracture_energy_mode1, q.tensile_strength, opening_pre_peak_work(s.tensile_strength, s.peak_opening));
+  s.slip_softening = softening_length(q.fracture_energy_mode2, q.cohesion, slip_pre_peak_work(s.cohesion, s.peak_slip));
   return s;
 }
 
@@ -171,6 +173,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   copy_from_host(a.joint_params.length, joint_length);
   a.joint_params.preload.assign(joints_, JointPreload{0.0, 0.0});
   a.joints.damage.assign(joints_, JointPointDamage{{0, 0, 0}});
+  a.joints.plastic.assign(joints_, JointPointPlastic{{0, 0, 0}, {0, 0, 0}});
   a.joints.separation.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.broken.assign(joints_, 0);
@@ -964,8 +967,12 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
     throw InputError("checkpoint " + r.path() + ": its rock has " + std::to_string(counts[0]) + " triangles and " +
                      std::to_string(counts[1]) + " joints, this case's mesh " + std::to_string(triangles_) + " and " +
                      std::to_string(joints_));
-  detail::RockArrays::for_each_checkpoint_array(
-      *a_, [&](const std::string& name, auto& v, bool fixed) { read_array(r, name, v, fixed ? v.size() : 0); });
+  detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, auto& v, bool fixed) {
+    // Checkpoints of builds before the plastic shear slip lack it: zero plastic slip gives the next evaluation
+    // of the joint law those builds' tractions and damage (docs/fdem-solver.md, "Cohesive joint").
+    if (name == "rock.joints.plastic" && !r.has(name)) return;
+    read_array(r, name, v, fixed ? v.size() : 0);
+  });
   // Each scalar by name: finite, and non-negative but for the contact grid's origin.
   auto scalar = [&](const char* name) {
     const double v = r.value<double>(name);
@@ -1010,6 +1017,14 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   std::vector<double> damage;
   for (const JointPointDamage& jd : to_host(a.joints.damage)) damage.insert(damage.end(), jd.point, jd.point + kJointPoints);
   check_range(r, "rock.joints.damage", damage, 0, 1);
+  std::vector<double> slip, path;
+  for (const JointPointPlastic& jp : to_host(a.joints.plastic)) {
+    slip.insert(slip.end(), jp.slip, jp.slip + kJointPoints);
+    path.insert(path.end(), jp.path, jp.path + kJointPoints);
+  }
+  const double huge = std::numeric_limits<double>::max();
+  check_range(r, "rock.joints.plastic", slip, -huge, huge);
+  check_range(r, "rock.joints.plastic", path, 0, huge);
   if (options_.contact) {
     const detail::ContactGridArrays& g = a.grid;
     const double cells = static_cast<double>(grid_nx_) * grid_ny_;

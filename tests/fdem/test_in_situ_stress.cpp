@@ -92,7 +92,7 @@ TEST_CASE("S1: the prestretch's stress is the in-situ stress, and the joint prel
   };
   for (const Case c : {Case{-20e6, 9e6}, Case{-20e6, -25e6}, Case{3e6, 10e6}, Case{0.0, -5e6}, Case{5.9e6, 0.0}}) {
     const JointPreload p = joint_preload(c.normal, c.shear, j);
-    const JointTraction t = joint_traction(p.opening, p.slip, j, 0.0);
+    const JointTraction t = joint_traction(p.opening, p.slip, j, JointHistory{});
     std::printf("S1 preload: sigma %.3g MPa, tau %.3g MPa -> opening %.4g um, slip %.4g um; traction error %.2e Pa, damage %g\n",
                 c.normal / 1e6, c.shear / 1e6, p.opening * 1e6, p.slip * 1e6,
                 std::fabs(t.normal - c.normal) + std::fabs(t.shear - c.shear), t.damage);

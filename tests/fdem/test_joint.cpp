@@ -5,7 +5,10 @@
 #include "blastsim/fdem/material.hpp"
 #include "catch.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 using namespace blastsim::fdem;
 
@@ -15,24 +18,26 @@ namespace {
 JointStrength paper_joint() {
   const RockMaterial rock = RockMaterial::paper_table2();
   const double h = 9.5e-3, p = 10 * rock.youngs_modulus;
+  const double op = 2 * h * rock.tensile_strength / p, sp = h * rock.cohesion / p;
   return {rock.tensile_strength,
           rock.cohesion,
           std::tan(rock.friction_angle),
-          2 * h * rock.tensile_strength / p,
-          2 * h * rock.cohesion / p,
-          softening_length(rock.fracture_energy_mode1, rock.tensile_strength, 2 * h * rock.tensile_strength / p),
-          softening_length(rock.fracture_energy_mode2, rock.cohesion, 2 * h * rock.cohesion / p)};
+          op,
+          sp,
+          softening_length(rock.fracture_energy_mode1, rock.tensile_strength, 2.0 / 3 * rock.tensile_strength * op),
+          softening_length(rock.fracture_energy_mode2, rock.cohesion, 0.5 * rock.cohesion * sp)};
 }
 
 //! Work per unit area [J/m2] of the traction along a monotone path from (o0, s0) to (o1, s1), by the
 //! trapezoid rule on n steps, carrying the damage along.
 double work(const JointStrength& j, double o0, double o1, double s0, double s1, int n = 200000) {
-  double w = 0, D = 0;
-  JointTraction prev = joint_traction(o0, s0, j, D);
+  double w = 0;
+  JointTraction prev = joint_traction(o0, s0, j, JointHistory{});
+  JointHistory h = prev.history();
   for (int k = 1; k <= n; ++k) {
     const double t = static_cast<double>(k) / n;
-    const JointTraction cur = joint_traction(o0 + t * (o1 - o0), s0 + t * (s1 - s0), j, D);
-    D = cur.damage;
+    const JointTraction cur = joint_traction(o0 + t * (o1 - o0), s0 + t * (s1 - s0), j, h);
+    h = cur.history();
     w += 0.5 * (prev.normal + cur.normal) * (o1 - o0) / n + 0.5 * (prev.shear + cur.shear) * (s1 - s0) / n;
     prev = cur;
   }
@@ -64,29 +69,150 @@ TEST_CASE("Pure mode I and mode II: dissipated energy per unit area equals G_I a
   CHECK_THAT(g1, WithinRel(rock.fracture_energy_mode1, 0.001));
   CHECK_THAT(g2, WithinRel(rock.fracture_energy_mode2, 0.001));
   // Fully broken at the end of each path.
-  CHECK(joint_traction(j.peak_opening + j.opening_softening, 0, j, 0).damage == 1.0);
-  CHECK(joint_traction(j.peak_opening + j.opening_softening, 0, j, 0).normal == 0.0);
+  CHECK(joint_traction(j.peak_opening + j.opening_softening, 0, j, JointHistory{}).damage == 1.0);
+  CHECK(joint_traction(j.peak_opening + j.opening_softening, 0, j, JointHistory{}).normal == 0.0);
 }
 
 TEST_CASE("Peak tractions: tensile strength, Mohr-Coulomb shear strength, compression penalty", "[fdem][joint]") {
   const JointStrength j = paper_joint();
-  CHECK_THAT(joint_traction(j.peak_opening, 0, j, 0).normal, WithinRel(j.tensile_strength, 1e-14));
-  CHECK_THAT(joint_traction(0, j.peak_slip, j, 0).shear, WithinRel(j.cohesion, 1e-14));
-  CHECK_THAT(joint_traction(0, -j.peak_slip, j, 0).shear, WithinRel(-j.cohesion, 1e-14));
+  CHECK_THAT(joint_traction(j.peak_opening, 0, j, JointHistory{}).normal, WithinRel(j.tensile_strength, 1e-14));
+  CHECK_THAT(joint_traction(0, j.peak_slip, j, JointHistory{}).shear, WithinRel(j.cohesion, 1e-14));
+  CHECK_THAT(joint_traction(0, -j.peak_slip, j, JointHistory{}).shear, WithinRel(-j.cohesion, 1e-14));
   // Closed by o = -o_p: sigma = -2 f_t; the shear strength rises to c + 2 f_t tan(phi) (Mohr-Coulomb).
   const double o = -j.peak_opening, sigma = -2 * j.tensile_strength, fs = j.cohesion - sigma * j.tan_friction;
-  CHECK_THAT(joint_traction(o, 0, j, 0).normal, WithinRel(sigma, 1e-14));
+  CHECK_THAT(joint_traction(o, 0, j, JointHistory{}).normal, WithinRel(sigma, 1e-14));
+  // The elastic shear branch (stiffness c / s_p) meets the cap f_s at s_p f_s / c; beyond it the slip is plastic.
   const double sp = j.peak_slip * fs / j.cohesion;
-  CHECK_THAT(joint_traction(o, sp, j, 0).shear, WithinRel(fs, 1e-14));
-  CHECK(joint_traction(o, sp, j, 0).damage == 0.0);
+  CHECK_THAT(joint_traction(o, sp, j, JointHistory{}).shear, WithinRel(fs, 1e-14));
+  CHECK(joint_traction(o, sp, j, JointHistory{}).damage <= 1e-12);
+  CHECK(joint_traction(o, 0.999 * sp, j, JointHistory{}).damage == 0.0);
+  CHECK_THAT(joint_traction(o, 0.999 * sp, j, JointHistory{}).shear, WithinRel(0.999 * fs, 1e-14));
 }
 
 TEST_CASE("Damage never heals", "[fdem][joint]") {
   const JointStrength j = paper_joint();
-  const JointTraction half = joint_traction(j.peak_opening + 0.5 * j.opening_softening, 0, j, 0);
+  const JointTraction half = joint_traction(j.peak_opening + 0.5 * j.opening_softening, 0, j, JointHistory{});
   CHECK_THAT(half.damage, WithinAbs(0.5, 1e-12));
   // Back to half the peak opening: the damage stays and the traction is the reduced one.
-  const JointTraction back = joint_traction(0.5 * j.peak_opening, 0, j, half.damage);
+  const JointTraction back = joint_traction(0.5 * j.peak_opening, 0, j, half.history());
   CHECK(back.damage == half.damage);
   CHECK_THAT(back.normal, WithinRel(softening_curve(0.5) * 0.75 * j.tensile_strength, 1e-12));
+}
+
+namespace {
+
+//! Elastic energy per unit area [J/m2] a point holds, from the law's formulas (docs/fdem-solver.md, "Cohesive
+//! joint"): the normal potential (f_t o^2 / o_p in compression; z f_t o_p (r^2 - r^3/3) before the peak in
+//! tension, r = o / o_p, and z f_t o_p (r - 1/3) past it), plus (1/2) z k (s - s_pl)^2, k = c / s_p.
+double stored(const JointStrength& j, double o, double s, const JointHistory& h) {
+  const double z = softening_curve(h.damage), r = o / j.peak_opening, k = j.cohesion / j.peak_slip;
+  const double normal = o < 0 ? j.tensile_strength * o * o / j.peak_opening
+                              : z * j.tensile_strength * j.peak_opening * (r < 1 ? r * r - r * r * r / 3 : r - 1.0 / 3);
+  return normal + 0.5 * z * k * (s - h.plastic_slip) * (s - h.plastic_slip);
+}
+
+//! Work per unit area [J/m2] done on a point along straight segments through `path` (opening, slip) [m], n
+//! trapezoid steps each; `h` carries the history in and out.
+double path_work(const JointStrength& j, const std::vector<std::pair<double, double>>& path, JointHistory& h,
+                 int n = 20000) {
+  double w = 0;
+  JointTraction prev = joint_traction(path[0].first, path[0].second, j, h);
+  h = prev.history();
+  for (size_t leg = 1; leg < path.size(); ++leg) {
+    const auto [o0, s0] = path[leg - 1];
+    const auto [o1, s1] = path[leg];
+    for (int k = 1; k <= n; ++k) {
+      const double t = static_cast<double>(k) / n;
+      const JointTraction cur = joint_traction(o0 + t * (o1 - o0), s0 + t * (s1 - s0), j, h);
+      h = cur.history();
+      w += 0.5 * (prev.normal + cur.normal) * (o1 - o0) / n + 0.5 * (prev.shear + cur.shear) * (s1 - s0) / n;
+      prev = cur;
+    }
+  }
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("F11 Shear slip is plastic: elastic under the Coulomb cap, no energy from any cycle",
+          "[fdem][joint][F11]") {
+  const JointStrength j = paper_joint();
+  const double k = j.cohesion / j.peak_slip;  // the elastic shear stiffness [Pa/m] (p / h)
+  // 1. A slide from rest under a fixed compression: tau = k s up to the cap f_s = c - sigma tan(phi), then
+  // z(D) f_s with D = (s - f_s / k) / s_t, the same in one evaluation as in many (the return is exact).
+  const double o = -0.8 * j.peak_opening, sigma = 2 * o * j.tensile_strength / j.peak_opening;
+  const double fs = j.cohesion - sigma * j.tan_friction, yield = fs / k;
+  double worst = 0;
+  JointHistory h;
+  for (int step = 1; step <= 400; ++step) {
+    const double s = step * 2.5e-3 * (yield + 1.2 * j.slip_softening);
+    const double D = std::min(1.0, std::max(0.0, (s - yield) / j.slip_softening));
+    const double expected = s < yield ? k * s : softening_curve(D) * fs;
+    const JointTraction many = joint_traction(o, s, j, h), one = joint_traction(o, s, j, JointHistory{});
+    h = many.history();
+    worst = std::max({worst, std::fabs(many.shear - expected), std::fabs(one.shear - expected)});
+    CHECK_THAT(many.damage, WithinAbs(D, 1e-12));
+  }
+  std::printf("F11 slide under %.2f MPa: largest |tau - (k s, then z f_s)| %.3e Pa (f_s %.4g MPa)\n", sigma / 1e6,
+              worst, fs / 1e6);
+  CHECK(worst <= 1e-8 * fs);
+  // 2. Past the cap, unloading is elastic at k from the plastic slip s - c / k.
+  const JointTraction up = joint_traction(0, 1.02 * j.peak_slip, j, JointHistory{});
+  const double D = 0.02 * j.peak_slip / j.slip_softening;
+  CHECK_THAT(up.plastic_slip, WithinRel(0.02 * j.peak_slip, 1e-12));
+  CHECK_THAT(up.damage, WithinRel(D, 1e-12));
+  CHECK_THAT(up.shear, WithinRel(softening_curve(D) * j.cohesion, 1e-12));
+  const JointTraction back = joint_traction(0, 0.5 * j.peak_slip, j, up.history());
+  CHECK_THAT(back.shear, WithinRel(softening_curve(D) * k * (0.5 - 0.02) * j.peak_slip, 1e-12));
+  CHECK(back.plastic_slip == up.plastic_slip);
+  // 3. Under the cap the joint is elastic whatever the compression does: slip back and forth to 0.9 s_p while the
+  // compression comes and goes (0 to 30 MPa) gives back all the work, to the trapezoid rule's error.
+  {
+    const double oc = -30e6 * j.peak_opening / (2 * j.tensile_strength);
+    std::vector<std::pair<double, double>> path{{0, 0}};
+    for (int cycle = 0; cycle < 5; ++cycle)
+      for (const auto& corner : {std::pair{0.0, 0.9}, std::pair{1.0, 0.9}, std::pair{1.0, -0.9}, std::pair{0.0, -0.9}})
+        path.push_back({corner.first * oc, corner.second * j.peak_slip});
+    path.push_back({0, 0});
+    JointHistory he;
+    const double w = path_work(j, path, he);
+    std::printf("F11 elastic cycles under changing compression: work %.3e J/m2, plastic slip %.3e m\n", w, he.slip_path);
+    CHECK(he.slip_path == 0.0);
+    CHECK(std::fabs(w) <= 1e-9 * j.cohesion * j.peak_slip);
+  }
+  // 4. The cycle that returned 0.85 and 1.71 J/m2 with the earlier nonlinear-elastic shear (docs/fdem-solver.md):
+  // from rest, slip to the cap, 1.5 times the yield slip, compress by 10 or 30 MPa, slip back to 0, release, and the
+  // reverse. The work done must be at least the elastic energy held at the end: the rest is dissipated.
+  for (const double compression : {10e6, 30e6}) {
+    const double oc = -compression * j.peak_opening / (2 * j.tensile_strength);
+    for (const bool reverse : {false, true}) {
+      std::vector<std::pair<double, double>> path{{0, 0}, {0, 1.5 * j.peak_slip}, {oc, 1.5 * j.peak_slip}, {oc, 0}, {0, 0}};
+      if (reverse) std::reverse(path.begin(), path.end());
+      JointHistory hc;
+      const double w = path_work(j, path, hc);
+      const double left = stored(j, 0, 0, hc);
+      std::printf("F11 cycle, %g MPa, %s: work %.4f J/m2, stored at the end %.4f J/m2, dissipated %.4f J/m2\n",
+                  compression / 1e6, reverse ? "reversed" : "forward", w, left, w - left);
+      CHECK(w - left > 0);
+    }
+  }
+  // 5. Random paths of opening and slip through softening and breaking: on every leg the work done is at least the
+  // change of the stored energy (dissipation >= 0), to the trapezoid rule's error (1e-6 of the leg's work).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uo(-2.0, 1.2), us(-3.0, 3.0);
+  double least = 1e300;
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<std::pair<double, double>> path{{0, 0}};
+    for (int leg = 0; leg < 8; ++leg) path.push_back({uo(rng) * j.peak_opening, us(rng) * j.peak_slip});
+    JointHistory hr, before;
+    for (size_t leg = 1; leg < path.size(); ++leg) {
+      const double e0 = stored(j, path[leg - 1].first, path[leg - 1].second, before);
+      const double w = path_work(j, {path[leg - 1], path[leg]}, hr, 4000);
+      const double e1 = stored(j, path[leg].first, path[leg].second, hr);
+      least = std::min(least, w - (e1 - e0));
+      CHECK(w - (e1 - e0) >= -1e-6 * std::fabs(w) - 1e-12);
+      before = hr;
+    }
+  }
+  std::printf("F11 random paths: least dissipation of a leg %.3e J/m2\n", least);
 }

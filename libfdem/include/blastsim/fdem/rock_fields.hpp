@@ -69,6 +69,11 @@ struct JointPointValues {
 struct JointPointDamage {
   double point[kJointPoints];  //!< damage D in [0, 1]
 };
+//! The shear history of a joint's three points (joint_traction(), JointHistory).
+struct JointPointPlastic {
+  double slip[kJointPoints];  //!< plastic slip s_pl [m], signed
+  double path[kJointPoints];  //!< accumulated plastic slip kappa [m]
+};
 
 //! The two triangles of a contact pair, i < j.
 struct TrianglePair {
@@ -135,6 +140,7 @@ struct PairLoad {
   X(std::uint8_t, exposed, "kEdgeInside, kEdgeBoundary or kEdgeCrackFace")
 #define BLASTSIM_ROCK_JOINT_STATE(X)                                       \
   X(JointPointDamage, damage, "irreversible damage at the three points")   \
+  X(JointPointPlastic, plastic, "plastic slip and its accumulated path at the three points [m]") \
   X(JointPointValues, separation, "opening and slip at the three points [m]") \
   X(JointPointValues, traction, "normal and shear traction at the three points [Pa]") \
   X(std::uint8_t, broken, "1 once two of its three points reached damage 1")

@@ -176,6 +176,7 @@ struct JointForceKernel {
     Vec2 f_a0{0, 0}, f_a1{0, 0};  // loads on face A's nodes; face B gets the opposite at b1, b0
     int broken_points = 0;
     JointPointDamage& damage = state.damage[j];
+    JointPointPlastic& plastic = state.plastic[j];
     JointPointValues& separation = state.separation[j];
     JointPointValues& traction = state.traction[j];
     BLAST_UNROLL
@@ -185,8 +186,11 @@ struct JointForceKernel {
       const Vec2 d{xb.x - xa.x, xb.y - xa.y};
       double o = d.x * n.x + d.y * n.y, s = d.x * t.x + d.y * t.y;
       if (preloaded) o += pre.opening, s += pre.slip;
-      const JointTraction tr = joint_traction(o, s, strength, damage.point[q]);
+      const JointTraction tr =
+          joint_traction(o, s, strength, JointHistory{damage.point[q], plastic.slip[q], plastic.path[q]});
       damage.point[q] = tr.damage;
+      plastic.slip[q] = tr.plastic_slip;
+      plastic.path[q] = tr.slip_path;
       separation.normal[q] = o;
       separation.shear[q] = s;
       traction.normal[q] = tr.normal;
@@ -210,16 +214,19 @@ struct JointForceKernel {
   }
 };
 
-//! Secant estimate of the elastic energy [J/m] an intact joint still holds: half traction times separation,
-//! summed over its three points with their weights (0 for a broken joint).
+//! Estimate of the elastic energy [J/m] an intact joint still holds, summed over its three points with their
+//! weights (0 for a broken joint): half the normal traction times the opening (a secant estimate) plus half the
+//! shear traction times the elastic slip s - s_pl (exact: the shear branch is linear).
 BLAST_HD inline double joint_stored_energy(const JointParams& params, const JointState<Access::read>& state, int j) {
   if (state.broken[j]) return 0.0;
   const double h = params.length[j];
   const double w[kJointPoints] = {h / 6.0, 4.0 * h / 6.0, h / 6.0};
   const JointPointValues& tr = state.traction[j];
   const JointPointValues& sep = state.separation[j];
+  const JointPointPlastic& pl = state.plastic[j];
   double sum = 0;
-  for (int q = 0; q < kJointPoints; ++q) sum += 0.5 * w[q] * (tr.normal[q] * sep.normal[q] + tr.shear[q] * sep.shear[q]);
+  for (int q = 0; q < kJointPoints; ++q)
+    sum += 0.5 * w[q] * (tr.normal[q] * sep.normal[q] + tr.shear[q] * (sep.shear[q] - pl.slip[q]));
   return sum;
 }
 
