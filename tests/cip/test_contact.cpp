@@ -176,7 +176,7 @@ TEST_CASE("G9 Sod: density L1 falls at order >= 0.8 from 200 to 1600 cells", "[l
   CHECK(order >= 0.8);
 }
 TEST_CASE("G16 contacts born in shock tubes: density within 2 % of the jump beyond the two star densities",
-          "[cip][G16]") {
+          "[cip][G16][heavy]") {
   // Toro (2009), Table 4.1, tests 1, 3, 4, 5 (test 2 has no density jump at its contact), Lax's tube (Lax 1954;
   // unit tube, diaphragm at 0.5, t = 0.14) and Sod's tube at 100 : 1 in density and pressure; 400 cells. A
   // contact that forms from the Riemann problem separates the exact star densities rho*_L and rho*_R; within

@@ -33,7 +33,7 @@ cip::GasSolver traced_sod(int n, bool traced, cip::BoundaryKind ends) {
 }  // namespace
 
 TEST_CASE("G13 tracer: the same flow, the traced mass kept, the traced fraction bounded and moving with the contact",
-          "[cip][G13]") {
+          "[cip][G13][heavy]") {
   const int n = 200;
   const double t = 0.2;
   cip::GasSolver plain = traced_sod(n, false, cip::BoundaryKind::outflow);

@@ -61,7 +61,7 @@ PocketRun run_pocket(int n, int width, double ratio, Flow flow, int steps) {
 }  // namespace
 
 TEST_CASE("G14 near-vacuum pockets: carried exactly at uniform pressure, and positive where flows collide",
-          "[cip][G14]") {
+          "[cip][G14][heavy]") {
   const int steps = 300;
   for (double ratio : {1e2, 1e4, 1e6}) {
     const double p0 = 1e5, e_hole = p0 / (0.4 * (1.0 / ratio)), rho_hole = 1.0 / ratio;
