@@ -968,8 +968,8 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
                      std::to_string(counts[1]) + " joints, this case's mesh " + std::to_string(triangles_) + " and " +
                      std::to_string(joints_));
   detail::RockArrays::for_each_checkpoint_array(*a_, [&](const std::string& name, auto& v, bool fixed) {
-    // Checkpoints of builds before the plastic shear slip lack it: zero plastic slip gives the next evaluation
-    // of the joint law those builds' tractions and damage (docs/fdem-solver.md, "Cohesive joint").
+    // Checkpoints of builds before the plastic shear slip lack it: their joints go on with zero plastic slip, so
+    // all their slip counts as elastic (capped at the shear strength) and their damage as it was.
     if (name == "rock.joints.plastic" && !r.has(name)) return;
     read_array(r, name, v, fixed ? v.size() : 0);
   });
