@@ -1,5 +1,6 @@
 //! \file test_rock_solver.cpp
 //! \brief FDEM solver validation (docs/validation.md, F1, F3, F4, F5, F7) and bitwise determinism.
+#include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/error.hpp"
 #include "blastsim/fdem/joint_kernels.hpp"
 #include "blastsim/fdem/rock_analysis.hpp"
@@ -10,6 +11,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 using namespace blastsim::fdem;
 using namespace blastsim::fdem::testing;
@@ -191,6 +196,84 @@ TEST_CASE("F3: fracture energy per unit crack length equals G_I and G_II at two 
     CHECK(broken == n);
     CHECK(std::fabs(g2 / rock.fracture_energy_mode2 - 1) < 0.03);
   }
+}
+
+namespace {
+//! Copies checkpoint `from` to `to` without the record `drop`, with a new trailer (record count, CRC-32): the
+//! file an earlier build, which did not write that record, would have written (layout: core/checkpoint.hpp).
+void copy_checkpoint_without(const std::string& from, const std::string& to, const std::string& drop) {
+  std::ifstream in(from, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t header = 8 + 4, body_end = bytes.size() - blastsim::detail::kCheckpointTrailer;
+  std::string out = bytes.substr(0, header);
+  std::uint64_t records = 0;
+  auto u64 = [&](size_t at) {
+    std::uint64_t v;
+    std::memcpy(&v, bytes.data() + at, sizeof v);
+    return v;
+  };
+  for (size_t at = header; at < body_end;) {
+    const std::uint64_t name_length = u64(at);
+    const std::string name = bytes.substr(at + 8, name_length);
+    const size_t end = at + 8 + name_length + 16 + u64(at + 8 + name_length) * u64(at + 16 + name_length);
+    if (name != drop) out += bytes.substr(at, end - at), ++records;
+    at = end;
+  }
+  const std::uint32_t crc = blastsim::detail::crc32_of(0, out.data(), out.size());
+  out.append(blastsim::detail::kCheckpointEnd, 8);
+  out.append(reinterpret_cast<const char*>(&records), sizeof records);
+  out.append(reinterpret_cast<const char*>(&crc), sizeof crc);
+  std::ofstream(to, std::ios::binary) << out;
+}
+}  // namespace
+
+TEST_CASE("A checkpoint without the joints' plastic slip restarts, and a joint that slid one way goes on as before",
+          "[fdem][checkpoint]") {
+  // Checkpoints of builds before the elastic-plastic shear hold no rock.joints.plastic; the solver restarts them
+  // with zero plastic slip. For a slide in one direction the first evaluation returns each point to the same
+  // plastic slip (all of it past the cap), so the run goes on as from the full checkpoint, to rounding.
+  RockMaterial rock = RockMaterial::paper_table2();
+  rock.tensile_strength = 60e6, rock.fracture_energy_mode1 = 2000;  // as F3's mode II: the sheared line slips
+  const double s = 0.01, h = s * std::sqrt(3.0) / 2, v = 0.2;
+  const FdemTopology topo = build_topology(two_strips(4, s));
+  RockOptions opt;
+  opt.contact = false;
+  auto make = [&] {
+    RockSolver solver(topo, rock, opt);
+    solver.prescribe_velocity(nodes_where(topo, [&](double, double y) { return y < -h + 1e-9; }), true, true, 0, 0);
+    solver.prescribe_velocity(nodes_where(topo, [&](double, double y) { return y > h - 1e-9; }), true, true, v, 0);
+    return solver;
+  };
+  RockSolver first = make();
+  const double dt = 0.9 * first.stable_dt();
+  const double slide = 0.3 * softening_length(rock.fracture_energy_mode2, rock.cohesion, 0);  // into the softening
+  run_to(first, slide / v, dt);
+  REQUIRE(first.energies().broken_joints == 0);
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "blastsim_test_plastic_restart";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string full = (dir / "full.ckpt").string(), old = (dir / "old.ckpt").string();
+  {
+    blastsim::CheckpointWriter w(full);
+    first.write_checkpoint(w);
+    w.commit();
+  }
+  copy_checkpoint_without(full, old, "rock.joints.plastic");
+  RockSolver a = make(), b = make();
+  for (auto [solver, path] : {std::pair{&a, full}, std::pair{&b, old}}) {
+    blastsim::CheckpointReader r(path);
+    solver->read_checkpoint(r);
+    r.finish();
+    REQUIRE(r.has("rock.joints.plastic") == (path == full));
+    run_to(*solver, 2 * slide / v, dt);
+  }
+  const RockEnergies ea = a.energies(), eb = b.energies();
+  std::printf("plastic-slip restart: fracture dissipated %.9e (full) / %.9e (without) J/m, joint stored %.6e / %.6e J/m\n",
+              ea.fracture_dissipated, eb.fracture_dissipated, ea.joint_stored, eb.joint_stored);
+  CHECK(ea.fracture_dissipated > 0);
+  CHECK_THAT(eb.fracture_dissipated, WithinRel(ea.fracture_dissipated, 1e-9));
+  CHECK_THAT(eb.joint_stored, WithinRel(ea.joint_stored, 1e-9));
+  CHECK(eb.broken_joints == ea.broken_joints);
 }
 
 TEST_CASE("F5: two equal elastic bars collide: momentum, swapped velocities, energy, contact time",
