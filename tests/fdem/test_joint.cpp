@@ -28,20 +28,31 @@ JointStrength paper_joint() {
           softening_length(rock.fracture_energy_mode2, rock.cohesion, 0.5 * rock.cohesion * sp)};
 }
 
-//! Work per unit area [J/m2] of the traction along a monotone path from (o0, s0) to (o1, s1), by the
-//! trapezoid rule on n steps, carrying the damage along.
-double work(const JointStrength& j, double o0, double o1, double s0, double s1, int n = 200000) {
+//! Work per unit area [J/m2] done on a point along straight segments through `path` (opening, slip) [m], n
+//! trapezoid steps each; `h` carries the history in and out.
+double path_work(const JointStrength& j, const std::vector<std::pair<double, double>>& path, JointHistory& h,
+                 int n = 20000) {
   double w = 0;
-  JointTraction prev = joint_traction(o0, s0, j, JointHistory{});
-  JointHistory h = prev.history();
-  for (int k = 1; k <= n; ++k) {
-    const double t = static_cast<double>(k) / n;
-    const JointTraction cur = joint_traction(o0 + t * (o1 - o0), s0 + t * (s1 - s0), j, h);
-    h = cur.history();
-    w += 0.5 * (prev.normal + cur.normal) * (o1 - o0) / n + 0.5 * (prev.shear + cur.shear) * (s1 - s0) / n;
-    prev = cur;
+  JointTraction prev = joint_traction(path[0].first, path[0].second, j, h);
+  h = prev.history();
+  for (size_t leg = 1; leg < path.size(); ++leg) {
+    const auto [o0, s0] = path[leg - 1];
+    const auto [o1, s1] = path[leg];
+    for (int k = 1; k <= n; ++k) {
+      const double t = static_cast<double>(k) / n;
+      const JointTraction cur = joint_traction(o0 + t * (o1 - o0), s0 + t * (s1 - s0), j, h);
+      h = cur.history();
+      w += 0.5 * (prev.normal + cur.normal) * (o1 - o0) / n + 0.5 * (prev.shear + cur.shear) * (s1 - s0) / n;
+      prev = cur;
+    }
   }
   return w;
+}
+
+//! Work per unit area [J/m2] along the straight path from (o0, s0) to (o1, s1), from rest, on n steps.
+double work(const JointStrength& j, double o0, double o1, double s0, double s1, int n = 200000) {
+  JointHistory h;
+  return path_work(j, {{o0, s0}, {o1, s1}}, h, n);
 }
 
 }  // namespace
@@ -109,27 +120,6 @@ double stored(const JointStrength& j, double o, double s, const JointHistory& h)
   const double normal = o < 0 ? j.tensile_strength * o * o / j.peak_opening
                               : z * j.tensile_strength * j.peak_opening * (r < 1 ? r * r - r * r * r / 3 : r - 1.0 / 3);
   return normal + 0.5 * z * k * (s - h.plastic_slip) * (s - h.plastic_slip);
-}
-
-//! Work per unit area [J/m2] done on a point along straight segments through `path` (opening, slip) [m], n
-//! trapezoid steps each; `h` carries the history in and out.
-double path_work(const JointStrength& j, const std::vector<std::pair<double, double>>& path, JointHistory& h,
-                 int n = 20000) {
-  double w = 0;
-  JointTraction prev = joint_traction(path[0].first, path[0].second, j, h);
-  h = prev.history();
-  for (size_t leg = 1; leg < path.size(); ++leg) {
-    const auto [o0, s0] = path[leg - 1];
-    const auto [o1, s1] = path[leg];
-    for (int k = 1; k <= n; ++k) {
-      const double t = static_cast<double>(k) / n;
-      const JointTraction cur = joint_traction(o0 + t * (o1 - o0), s0 + t * (s1 - s0), j, h);
-      h = cur.history();
-      w += 0.5 * (prev.normal + cur.normal) * (o1 - o0) / n + 0.5 * (prev.shear + cur.shear) * (s1 - s0) / n;
-      prev = cur;
-    }
-  }
-  return w;
 }
 
 }  // namespace
