@@ -39,9 +39,12 @@ function(blastsim_use_vtk target)
   endif()
 endfunction()
 
-# Common warning set for project targets.
+# Common warning set for project targets, and the sanitizers' instrumentation when BLASTSIM_SANITIZE is set.
 function(blastsim_warnings target)
   target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>)
+  if(BLASTSIM_SANITIZE)
+    target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-fsanitize=${BLASTSIM_SANITIZE} -fno-omit-frame-pointer>)
+  endif()
 endfunction()
 
 # blastsim_add_library(<name> EXPORT <export name> SOURCES <files...> [KERNEL_SOURCES <files...>]):

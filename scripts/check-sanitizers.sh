@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # CI: the short test tier under AddressSanitizer + UndefinedBehaviorSanitizer (preset "sanitize": -O1, no VTK;
+# the libraries and the driver instrumented, the test programs' own code not (BLASTSIM_SANITIZE, CMakeLists.txt);
 # UBSan halts on the first report; scripts/ubsan.supp lists the third-party reports it ignores), less the cases
 # tagged [heavy]: many steps of kernels that shorter cases also run (docs/architecture.md "Tests"). Builds only
 # what the tests run.
