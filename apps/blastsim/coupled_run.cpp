@@ -289,7 +289,8 @@ class ChargeFiles {
 std::string checkpoint_case_text(const Case& c) {
   std::string text;
   const std::set<std::string> may_change{"time.end", "time.max_steps", "output.progress_interval", "output.directory"};
-  const std::map<std::string, std::string> later_keys{{"gas.pressure_predictor", "false"}};
+  const std::map<std::string, std::string> later_keys{{"gas.pressure_predictor", "false"},
+                                                      {"rock.mesh.algorithm", "\"frontal\""}};
   const std::string mark = kDefaultMark;
   for (const EchoLine& line : c.echo) {
     if (may_change.count(line.key)) continue;

@@ -54,6 +54,12 @@ fdem::MeshSpec read_mesh(TableReader& t) {
                                  "mesher = \"gmsh\"", t.path(), shape));
   if (t.has("growth") && !s.ring_mesher)
     throw InputError(t.key_path("growth") + ": the ring mesher's grading; only with mesher = \"rings\"");
+  if (t.has("algorithm") && s.ring_mesher)
+    throw InputError(t.key_path("algorithm") + ": Gmsh's meshing algorithm; only with mesher = \"gmsh\"");
+  if (!s.ring_mesher)
+    s.algorithm = t.text("algorithm", {"delaunay", "frontal"}, std::string("delaunay")) == "frontal"
+                      ? fdem::GmshAlgorithm::frontal
+                      : fdem::GmshAlgorithm::delaunay;
   // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
   if (s.ring_mesher && t.has("growth")) s.ring_growth = t.number("growth", "", Range{1.0, 2.0, false, false});
   for (TableReader& h : t.table_array("hole")) {

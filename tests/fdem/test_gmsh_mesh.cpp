@@ -4,7 +4,9 @@
 #include "blastsim/fdem/gmsh_mesh.hpp"
 #include "catch.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -81,6 +83,56 @@ TEST_CASE("Gmsh disc with a hole: area and hole perimeter converge to the circle
   const NamedMesh rh = gmsh_rectangle_with_hole(-0.1, -0.1, 0.1, 0.1, 0.0, 0.0, 0.03, h);
   CHECK_THAT(mesh_area(rh.mesh), WithinRel(0.04 - M_PI * 0.03 * 0.03, 0.01));
   CHECK(rh.boundary_groups.count("hole") == 1);
+}
+
+namespace {
+//! Bond-orientational order of a mesh's edges (Nelson & Halperin 1979, Phys. Rev. B 19:2457): psi_n = |mean of
+//! exp(i n theta)| over the edges whose midpoints lie in the annulus [r0, r1] and the angular sector [phi0, phi1),
+//! theta each edge's direction. A lattice of equilateral triangles has |psi_6| = 1; edges of every direction
+//! alike give 0 (to the sampling noise, about 1 / sqrt(edges)).
+double edge_order(const TriangleMesh& m, int n, double r0, double r1, double phi0, double phi1) {
+  std::complex<double> sum = 0;
+  long count = 0;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const auto &p = m.vertices[t[k]], &q = m.vertices[t[(k + 1) % 3]];
+      const double mx = 0.5 * (p[0] + q[0]), my = 0.5 * (p[1] + q[1]);
+      const double r = std::hypot(mx, my), phi = std::atan2(my, mx) + M_PI;
+      if (r < r0 || r > r1 || phi < phi0 || phi >= phi1) continue;
+      sum += std::polar(1.0, n * std::atan2(q[1] - p[1], q[0] - p[0]));  // each interior edge twice: same direction mod pi
+      ++count;
+    }
+  return count ? std::abs(sum) / count : 0.0;
+}
+}  // namespace
+
+TEST_CASE("Gmsh's default mesh is isotropic: no edge direction preferred, where the frontal mesh is a lattice",
+          "[fdem][mesh][gmsh]") {
+  // Cracks run along element edges, so a mesh whose edges prefer some directions prefers those crack paths.
+  // Reference: edges of every direction alike give psi_2 = psi_6 = 0 up to sampling noise; a lattice gives
+  // |psi_6| = 1. The annulus leaves three elements next to each rim, where the edges follow the circles. With
+  // independent edges the noise would be about 1 / sqrt(54,000) = 0.004 over the annulus and 1 / sqrt(4,500) =
+  // 0.015 in a sector of 30 degrees; neighbouring edges are not independent (a Delaunay mesh has small ordered
+  // patches), so the bounds are 0.03 over the annulus and, in each sector, a fifth of a lattice's order.
+  const double R = 0.3, a = 0.03, h = 0.006, r0 = a + 3 * h, r1 = R - 3 * h;
+  const NamedMesh iso = gmsh_disc_with_hole(0.0, 0.0, R, a, h);
+  const NamedMesh lattice = gmsh_disc_with_hole(0.0, 0.0, R, a, h, {}, GmshAlgorithm::frontal);
+  double iso6 = 0, iso2 = 0, lat6 = 1;
+  for (int s = 0; s < 12; ++s) {
+    const double phi0 = s * M_PI / 6, phi1 = (s + 1) * M_PI / 6;
+    iso6 = std::max(iso6, edge_order(iso.mesh, 6, r0, r1, phi0, phi1));
+    iso2 = std::max(iso2, edge_order(iso.mesh, 2, r0, r1, phi0, phi1));
+    lat6 = std::min(lat6, edge_order(lattice.mesh, 6, r0, r1, phi0, phi1));
+  }
+  const double all6 = edge_order(iso.mesh, 6, r0, r1, 0, 2 * M_PI), all2 = edge_order(iso.mesh, 2, r0, r1, 0, 2 * M_PI);
+  std::printf("edge order, disc R %.2f m with hole %.2f m, h %.3f m: delaunay (%zu triangles) |psi_6| %.4f, |psi_2| %.4f "
+              "over the annulus, largest of 12 sectors %.4f / %.4f; frontal (%zu triangles) smallest sector |psi_6| %.4f\n",
+              R, a, h, iso.mesh.triangles.size(), all6, all2, iso6, iso2, lattice.mesh.triangles.size(), lat6);
+  CHECK(all6 < 0.03);
+  CHECK(all2 < 0.03);
+  CHECK(iso6 < 0.2);
+  CHECK(iso2 < 0.2);
+  CHECK(lat6 > 0.5);  // the measure sees the frontal algorithm's lattice in every sector
 }
 
 TEST_CASE("Gmsh rectangle and disc with several holes: areas, one group per hole, every edge grouped",

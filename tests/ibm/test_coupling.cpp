@@ -323,11 +323,27 @@ TEST_CASE("I4: pressurised hole in elastic rock: wall stress = gas pressure, sym
   // Hole a = 20 mm in a disc R = 150 mm, Table 1 gas (27.97 MPa) suddenly applied, air (0.1 MPa) outside.
   // At 40 us the near field has settled and the wave reflected from the outer surface has not come back
   // ((2R - 2a)/c_p = 49 us). Per 45-degree sector, sigma_rr of the triangles within 3a is fitted by Lame's
-  // form A + B/r^2 and evaluated at the wall. Both gas loads: the paper's edge pressures and the face forces.
-  for (ibm::GasLoad load : {ibm::GasLoad::edge_pressures, ibm::GasLoad::face_forces}) {
-    const char* name = ibm::gas_load_name(load);
+  // form A + B/r^2 and evaluated at the wall. Both gas loads: the paper's edge pressures and the face forces, on
+  // Gmsh's frontal lattice of 4 mm triangles (128^2 cells of 2.5 mm), whose regular triangles keep the elements'
+  // own stress scatter below the fit's; and the edge pressures on the isotropic default mesh at 3 mm (170^2
+  // cells of 1.9 mm). On the isotropic mesh at 4 mm the constant-strain triangles' scatter alone takes single
+  // sectors to 6 % (B +5.95 % with edge pressures, -6.08 % with face forces; 2026-12-07). Face forces are not
+  // run on the 3 mm isotropic mesh: they scatter from -22 % to +10 % there (docs/validation.md, I4).
+  struct Setup {
+    ibm::GasLoad load;
+    fdem::GmshAlgorithm mesher;
+    int cells;
+    double h;
+  };
+  for (const Setup& setup : {Setup{ibm::GasLoad::edge_pressures, fdem::GmshAlgorithm::frontal, 128, 0.004},
+                             Setup{ibm::GasLoad::face_forces, fdem::GmshAlgorithm::frontal, 128, 0.004},
+                             Setup{ibm::GasLoad::edge_pressures, fdem::GmshAlgorithm::delaunay, 170, 0.003}}) {
+    const ibm::GasLoad load = setup.load;
+    const std::string label = std::string(ibm::gas_load_name(load)) +
+                              (setup.mesher == fdem::GmshAlgorithm::frontal ? ", frontal 4 mm" : ", isotropic 3 mm");
+    const char* name = label.c_str();
     const double R = 0.15, a = 0.02;
-    HoleInRock c(128, 0.16, R, a, 0.004, intact_rock(), {}, load);
+    HoleInRock c(setup.cells, 0.16, R, a, setup.h, intact_rock(), {}, load, setup.mesher);
     c.run_to(40e-6);
     const double p_out = eos.pressure(air.density, air.internal_energy);
     std::vector<std::array<double, 2>> wall_points;  // gas sampled around the whole wall, just inside the hole
@@ -436,7 +452,9 @@ TEST_CASE("Joints that break during a coupled run join the exposed edges and tak
   // is narrower than the grid (no gas cell in it), the gas's once the cell they face is active.
   HoleInRock c(80, 0.12, 0.1, 0.02, 0.005, fdem::RockMaterial::paper_table2());
   const long boundary = static_cast<long>(c.rock.boundary_edges().size());
-  c.run_to(20e-6);
+  c.run_to(40e-6);  // on this mesh the first joints break between 20 and 30 us
+  // The loads for the rock's next steps: joints that broke in the last rock step get theirs now (2 of 22 here).
+  c.coupler.gas_to_rock();
   const fdem::RockEnergies e = c.rock.energies();
   const std::vector<std::uint8_t> exposed = c.rock.edge_exposure();
   const std::vector<double> edge_p = c.rock.edge_pressures();
@@ -450,7 +468,7 @@ TEST_CASE("Joints that break during a coupled run join the exposed edges and tak
       if (exposed[snap.joint_nodes[j][side]] == fdem::kEdgeCrackFace && edge_p[snap.joint_nodes[j][side]] >= p_air * (1 - 1e-9))
         ++faces_with_pressure;
   }
-  std::printf("cracking: %d joints broken by 20 us; exposed edges: %ld boundary (mesh: %ld) + %ld crack faces, %ld of "
+  std::printf("cracking: %d joints broken by 40 us; exposed edges: %ld boundary (mesh: %ld) + %ld crack faces, %ld of "
               "them with a gas pressure (>= ambient)\n", e.broken_joints, n_boundary, boundary, n_crack, faces_with_pressure);
   REQUIRE(e.broken_joints > 0);
   CHECK(n_boundary == boundary);

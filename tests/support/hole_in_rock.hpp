@@ -36,9 +36,10 @@ struct HoleInRock {
   fdem::RockSolver rock;
   ibm::GasRockCoupler coupler;
   HoleInRock(int N, double w, double R, double a, double h, const fdem::RockMaterial& m,
-             const std::vector<fdem::Segment>& cracks = {}, ibm::GasLoad load = ibm::GasLoad::edge_pressures)
+             const std::vector<fdem::Segment>& cracks = {}, ibm::GasLoad load = ibm::GasLoad::edge_pressures,
+             fdem::GmshAlgorithm mesher = fdem::GmshAlgorithm::delaunay)
       : gas(cip::GasGrid::from_box(N, N, -w, w, -w, w), cip::EquationOfState::ideal(1.4)),
-        rock(fdem::build_topology(fdem::gmsh_disc_with_hole(0, 0, R, a, h, cracks).mesh), m, no_contact()),
+        rock(fdem::build_topology(fdem::gmsh_disc_with_hole(0, 0, R, a, h, cracks, mesher).mesh), m, no_contact()),
         coupler(gas, rock, table1_air, options_for(load)) {
     const double r_fill = a + 1.5 * 2 * w / N;
     gas.initialise([&](double x, double y) { return x * x + y * y < r_fill * r_fill ? table1_gas : table1_air; });
