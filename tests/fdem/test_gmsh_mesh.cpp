@@ -87,22 +87,36 @@ TEST_CASE("Gmsh disc with a hole: area and hole perimeter converge to the circle
 
 namespace {
 //! Bond-orientational order of a mesh's edges (Nelson & Halperin 1979, Phys. Rev. B 19:2457): psi_n = |mean of
-//! exp(i n theta)| over the edges whose midpoints lie in the annulus [r0, r1] and the angular sector [phi0, phi1),
-//! theta each edge's direction. A lattice of equilateral triangles has |psi_6| = 1; edges of every direction
-//! alike give 0 (to the sampling noise, about 1 / sqrt(edges)).
-double edge_order(const TriangleMesh& m, int n, double r0, double r1, double phi0, double phi1) {
-  std::complex<double> sum = 0;
-  long count = 0;
+//! exp(i n theta)|, theta each edge's direction, over the edges whose midpoints lie in the annulus [r0, r1]
+//! (`annulus`) and in each of `sectors` equal angular sectors of it (`sector`). A lattice of equilateral
+//! triangles has |psi_6| = 1; edges of every direction alike give 0 (to the sampling noise, about
+//! 1 / sqrt(edges)).
+struct EdgeOrder {
+  double annulus = 0;
+  std::vector<double> sector;
+};
+EdgeOrder edge_order(const TriangleMesh& m, int n, double r0, double r1, int sectors) {
+  std::vector<std::complex<double>> sum(sectors, 0.0);
+  std::vector<long> count(sectors, 0);
   for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3; ++k) {  // each interior edge twice: the same direction modulo pi
       const auto &p = m.vertices[t[k]], &q = m.vertices[t[(k + 1) % 3]];
       const double mx = 0.5 * (p[0] + q[0]), my = 0.5 * (p[1] + q[1]);
-      const double r = std::hypot(mx, my), phi = std::atan2(my, mx) + M_PI;
-      if (r < r0 || r > r1 || phi < phi0 || phi >= phi1) continue;
-      sum += std::polar(1.0, n * std::atan2(q[1] - p[1], q[0] - p[0]));  // each interior edge twice: same direction mod pi
-      ++count;
+      const double r = std::hypot(mx, my);
+      if (r < r0 || r > r1) continue;
+      const int s = std::min(sectors - 1, static_cast<int>((std::atan2(my, mx) + M_PI) / (2 * M_PI) * sectors));
+      sum[s] += std::polar(1.0, n * std::atan2(q[1] - p[1], q[0] - p[0]));
+      ++count[s];
     }
-  return count ? std::abs(sum) / count : 0.0;
+  EdgeOrder out;
+  std::complex<double> total = 0;
+  long edges = 0;
+  for (int s = 0; s < sectors; ++s) {
+    out.sector.push_back(count[s] ? std::abs(sum[s]) / count[s] : 0.0);
+    total += sum[s], edges += count[s];
+  }
+  out.annulus = edges ? std::abs(total) / edges : 0.0;
+  return out;
 }
 }  // namespace
 
@@ -117,14 +131,12 @@ TEST_CASE("Gmsh's default mesh is isotropic: no edge direction preferred, where 
   const double R = 0.3, a = 0.03, h = 0.006, r0 = a + 3 * h, r1 = R - 3 * h;
   const NamedMesh iso = gmsh_disc_with_hole(0.0, 0.0, R, a, h);
   const NamedMesh lattice = gmsh_disc_with_hole(0.0, 0.0, R, a, h, {}, GmshAlgorithm::frontal);
-  double iso6 = 0, iso2 = 0, lat6 = 1;
-  for (int s = 0; s < 12; ++s) {
-    const double phi0 = s * M_PI / 6, phi1 = (s + 1) * M_PI / 6;
-    iso6 = std::max(iso6, edge_order(iso.mesh, 6, r0, r1, phi0, phi1));
-    iso2 = std::max(iso2, edge_order(iso.mesh, 2, r0, r1, phi0, phi1));
-    lat6 = std::min(lat6, edge_order(lattice.mesh, 6, r0, r1, phi0, phi1));
-  }
-  const double all6 = edge_order(iso.mesh, 6, r0, r1, 0, 2 * M_PI), all2 = edge_order(iso.mesh, 2, r0, r1, 0, 2 * M_PI);
+  const EdgeOrder i6 = edge_order(iso.mesh, 6, r0, r1, 12), i2 = edge_order(iso.mesh, 2, r0, r1, 12);
+  const EdgeOrder l6 = edge_order(lattice.mesh, 6, r0, r1, 12);
+  const double iso6 = *std::max_element(i6.sector.begin(), i6.sector.end());
+  const double iso2 = *std::max_element(i2.sector.begin(), i2.sector.end());
+  const double lat6 = *std::min_element(l6.sector.begin(), l6.sector.end());
+  const double all6 = i6.annulus, all2 = i2.annulus;
   std::printf("edge order, disc R %.2f m with hole %.2f m, h %.3f m: delaunay (%zu triangles) |psi_6| %.4f, |psi_2| %.4f "
               "over the annulus, largest of 12 sectors %.4f / %.4f; frontal (%zu triangles) smallest sector |psi_6| %.4f\n",
               R, a, h, iso.mesh.triangles.size(), all6, all2, iso6, iso2, lattice.mesh.triangles.size(), lat6);
