@@ -279,7 +279,7 @@ JointSetPull pull_jointed_block(const JointSetSpec* set) {
 }  // namespace
 
 TEST_CASE("J3 joint set: a block cut by a set breaks only along it under a pull that leaves intact rock whole",
-          "[fdem][jointset][J3][gmsh]") {
+          "[fdem][jointset][J3][gmsh][heavy]") {
   const JointSetPull intact = pull_jointed_block(nullptr);
   JointSetSpec set;
   set.label = "rock.joint_set.0";

@@ -445,7 +445,7 @@ TEST_CASE("I5: gas enters a pre-cut crack from the hole and loads its faces", "[
   CHECK(loaded >= faces / 2);
 }
 
-TEST_CASE("Joints that break during a coupled run join the exposed edges and take the gas pressure", "[ibm][cracking]") {
+TEST_CASE("Joints that break during a coupled run join the exposed edges and take the gas pressure", "[ibm][cracking][heavy]") {
   // The paper's rock around a 20 mm hole of Table 1 gas: the hoop tension (about the gas pressure, 28 MPa)
   // exceeds the tensile strength (6.3 MPa), so radial cracks start at the wall. Their faces join the exposed
   // edges as crack faces and are given a pressure by the coupler every step: the ambient one while the crack
