@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Run one blastsim case N times on perturbed meshes and gather the spread of its main results.
 
-Usage: scripts/realisations.py CASE.toml N [--jitter F] [--rotate] [--strength-seed] [--out DIR] [--blastsim PATH]
+Usage: scripts/realisations.py CASE.toml N [--remesh] [--jitter F] [--rotate] [--strength-seed] [--out DIR] [--blastsim PATH]
                                [--resume] [--collect-only] [--jobs J] [section.key=value ...]
 
 Realisation K (K = 1..N) runs, one after another (J at once with --jobs J: each then with OMP_NUM_THREADS = cores / J
 unless the environment sets it),
     blastsim -q CASE.toml rock.mesh.jitter=F rock.mesh.seed=K output.directory=DIR/seed_K [section.key=value ...]
-with F = 0.03 unless --jitter says otherwise (--jitter 0 keeps the mesh; --rotate also turns the mesh of a disc
+with F = 0.03 unless --jitter says otherwise (--jitter 0 keeps the mesh). --remesh (Gmsh meshes) makes realisation K
+Gmsh's mesh number K instead, rock.mesh.realisation=K with no jitter unless --jitter is given: meshes that share no
+vertex, where jittered ones keep one topology (docs/fdem-solver.md, "Mesh realisations"). --rotate also turns the mesh of a disc
 shape about its centre, rock.mesh.rotation = rotation_deg(K), so that the polygons of its circles sit differently
 on the gas grid in each realisation; --strength-seed also sets
 rock.heterogeneity.seed=K, for a case with a [rock.heterogeneity] table: docs/input.md); DIR defaults to realisations_<case stem> in the current directory
@@ -117,6 +119,8 @@ def run_all(args, out):
         folder.mkdir(parents=True, exist_ok=True)
         command = [str(blastsim), "-q", args.case, f"rock.mesh.jitter={args.jitter}", f"rock.mesh.seed={k}",
                    f"output.directory={folder.resolve()}", *args.overrides]
+        if args.remesh:
+            command.append(f"rock.mesh.realisation={k}")
         if args.rotate:
             command.append(f"rock.mesh.rotation={rotation_deg(k)}")
         if args.strength_seed:
@@ -212,7 +216,8 @@ def write_tables(args, out, failed):
         for k, row in rows.items():
             w.writerow([k, f"seed_{k}"] + [cell(row[c]) for c in columns])
     lines = [f"# Realisations of {Path(args.case).name}: runs of seeds {', '.join(map(str, seeds))} in {out}",
-             "", f"Mesh jitter {args.jitter} (this command's --jitter)"
+             "", f"{'Gmsh mesh realisation K (--remesh); ' if args.remesh else ''}"
+             f"mesh jitter {args.jitter} (this command's --jitter)"
              f"{'; each mesh turned by rock.mesh.rotation = rotation_deg(K) (--rotate)' if args.rotate else ''}; "
              f"overrides: {' '.join(args.overrides) or 'none'}.", "",
              "| quantity | runs | mean | std (n-1) | min | max | CV | notes |",
@@ -236,7 +241,10 @@ def main():
     p.add_argument("case", help="case file (TOML)")
     p.add_argument("n", type=int, help="number of realisations (seeds 1..N)")
     p.add_argument("overrides", nargs="*", help="extra section.key=value overrides for every run")
-    p.add_argument("--jitter", type=float, default=0.03, help="rock.mesh.jitter of every run (default 0.03)")
+    p.add_argument("--remesh", action="store_true",
+                   help="a different Gmsh mesh per realisation: rock.mesh.realisation=K in realisation K")
+    p.add_argument("--jitter", type=float, default=None,
+                   help="rock.mesh.jitter of every run (default 0.03, or 0 with --remesh)")
     p.add_argument("--rotate", action="store_true",
                    help="also turn the mesh (disc shapes): rock.mesh.rotation=rotation_deg(K) in realisation K")
     p.add_argument("--strength-seed", action="store_true",
@@ -249,6 +257,8 @@ def main():
                         "OMP_NUM_THREADS = cores / jobs (at least 1)")
     p.add_argument("--collect-only", action="store_true", help="run nothing; rebuild the tables from the folders")
     args = p.parse_intermixed_args()
+    if args.jitter is None:
+        args.jitter = 0.0 if args.remesh else 0.03
     if args.n < 1:
         p.error("N must be at least 1")
     if args.jobs < 1:

@@ -44,6 +44,9 @@ fdem::MeshSpec read_mesh(TableReader& t) {
   // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
   if (t.has("rotation")) s.rotation = t.number("rotation", "deg", Range{-360.0, 360.0, false, false}) * M_PI / 180;
   if (s.shape == MeshShape::file) {
+    if (t.has("realisation"))
+      throw InputError(t.key_path("realisation") + ": picks one of Gmsh's meshes of a built shape; a mesh file is "
+                       "meshed already (remove the key, or give a shape)");
     s.file = t.text("file", {});
     return s;
   }
@@ -56,6 +59,12 @@ fdem::MeshSpec read_mesh(TableReader& t) {
     throw InputError(t.key_path("growth") + ": the ring mesher's grading; only with mesher = \"rings\"");
   if (t.has("algorithm") && s.ring_mesher)
     throw InputError(t.key_path("algorithm") + ": Gmsh's meshing algorithm; only with mesher = \"gmsh\"");
+  if (t.has("realisation") && s.ring_mesher)
+    throw InputError(t.key_path("realisation") + ": picks one of Gmsh's meshes; only with mesher = \"gmsh\" (the ring "
+                     "mesher has one mesh per size: use jitter and seed there)");
+  // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
+  if (t.has("realisation"))
+    s.realisation = static_cast<unsigned>(t.integer("realisation", "", 0, std::nullopt, 1000000));
   if (!s.ring_mesher)
     s.algorithm = t.text("algorithm", {"delaunay", "frontal"}, std::string("delaunay")) == "frontal"
                       ? fdem::GmshAlgorithm::frontal

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <set>
 #include <unordered_map>
@@ -135,6 +136,20 @@ NamedMesh extract_model(const std::string& source) {
   return out;
 }
 
+//! u_k of GmshOptions: a number in [-1, 1) from the square (i, j) and realisation k (SplitMix64's finaliser,
+//! Steele, Lea & Flood 2014, on the three combined), the same on every machine.
+double realisation_noise(double i, double j, unsigned k) {
+  auto mix = [](std::uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  const std::uint64_t z = mix(mix(mix(k) ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(i))) ^
+                              static_cast<std::uint64_t>(static_cast<std::int64_t>(j)));
+  return static_cast<double>(z >> 11) * (2.0 / 9007199254740992.0) - 1.0;  // 53 bits over [0, 2) - 1
+}
+
 void require_size(double h, const char* what) {
   if (!(h > 0) || !std::isfinite(h))
     throw InputError(std::string(what) + ": element size h = " + std::to_string(h) + " m must be > 0");
@@ -142,7 +157,7 @@ void require_size(double h, const char* what) {
 
 //! Names the boundary curves of the surfaces in the model by `classify(bounding box)` and meshes.
 template <class Classify>
-NamedMesh mesh_shape(double h, GmshAlgorithm algorithm, Classify classify, const std::string& source) {
+NamedMesh mesh_shape(double h, GmshOptions options, Classify classify, const std::string& source) {
   gmsh::model::occ::synchronize();
   gmsh::vectorpair surfaces, curves;
   gmsh::model::getEntities(surfaces, 2);
@@ -160,9 +175,16 @@ NamedMesh mesh_shape(double h, GmshAlgorithm algorithm, Classify classify, const
   std::vector<int> surface_tags;
   for (const auto& dt : surfaces) surface_tags.push_back(dt.second);
   gmsh::model::addPhysicalGroup(2, surface_tags);
+  const double noise = options.realisation > 0 ? kRealisationSizeNoise : 0.0;
   gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * h);
-  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
-  gmsh::option::setNumber("Mesh.Algorithm", algorithm == GmshAlgorithm::frontal ? 6 : 5);  // gmsh_mesh.hpp
+  gmsh::option::setNumber("Mesh.MeshSizeMax", h * (1 + noise));
+  gmsh::option::setNumber("Mesh.Algorithm", options.algorithm == GmshAlgorithm::frontal ? 6 : 5);  // gmsh_mesh.hpp
+  if (options.realisation > 0) {
+    const unsigned k = options.realisation;
+    gmsh::model::mesh::setSizeCallback([h, k, noise](int, int, double x, double y, double) {
+      return h * (1 + noise * realisation_noise(std::floor(x / h), std::floor(y / h), k));
+    });
+  }
   gmsh::model::mesh::generate(2);
   return extract_model(source);
 }
@@ -207,29 +229,29 @@ NamedMesh guarded(const std::string& what, Build build) {
 }  // namespace
 
 NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h, const std::vector<Segment>& embedded,
-                         GmshAlgorithm algorithm) {
+                         GmshOptions options) {
   require_size(h, "rectangle mesh");
   if (!(x1 > x0) || !(y1 > y0)) throw InputError("rectangle mesh: need x1 > x0 and y1 > y0");
   return guarded("rectangle mesh", [&] {
     embed_segments({{2, gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0)}}, embedded);
-    return mesh_shape(h, algorithm,
+    return mesh_shape(h, options,
                       [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
                       "rectangle mesh");
   });
 }
 
 NamedMesh gmsh_disc(double cx, double cy, double r, double h, const std::vector<Segment>& embedded,
-                    GmshAlgorithm algorithm) {
+                    GmshOptions options) {
   require_size(h, "disc mesh");
   if (!(r > 0)) throw InputError("disc mesh: radius " + std::to_string(r) + " m must be > 0");
   return guarded("disc mesh", [&] {
     embed_segments({{2, gmsh::model::occ::addDisk(cx, cy, 0, r, r)}}, embedded);
-    return mesh_shape(h, algorithm, [](double, double, double, double) { return std::string("outer"); }, "disc mesh");
+    return mesh_shape(h, options, [](double, double, double, double) { return std::string("outer"); }, "disc mesh");
   });
 }
 
 NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, double h,
-                              const std::vector<Segment>& embedded, GmshAlgorithm algorithm) {
+                              const std::vector<Segment>& embedded, GmshOptions options) {
   require_size(h, "disc-with-hole mesh");
   if (!(r_hole > 0) || !(r > r_hole))
     throw InputError("disc-with-hole mesh: need 0 < hole radius (" + std::to_string(r_hole) + " m) < radius (" +
@@ -241,14 +263,14 @@ NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, dou
     std::vector<gmsh::vectorpair> map;
     gmsh::model::occ::cut({{2, outer}}, {{2, hole}}, out, map);
     embed_segments(out, embedded);
-    return mesh_shape(h, algorithm, [&](double a, double, double c, double) {
+    return mesh_shape(h, options, [&](double a, double, double c, double) {
       return 0.5 * (c - a) > 0.5 * (r + r_hole) ? std::string("outer") : std::string("hole");
     }, "disc-with-hole mesh");
   });
 }
 
 NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, double cx, double cy, double r_hole,
-                                   double h, GmshAlgorithm algorithm) {
+                                   double h, GmshOptions options) {
   require_size(h, "rectangle-with-hole mesh");
   if (!(x1 > x0) || !(y1 > y0) || !(r_hole > 0) || cx - r_hole <= x0 || cx + r_hole >= x1 || cy - r_hole <= y0 ||
       cy + r_hole >= y1)
@@ -259,7 +281,7 @@ NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, d
     gmsh::vectorpair out;
     std::vector<gmsh::vectorpair> map;
     gmsh::model::occ::cut({{2, rect}}, {{2, hole}}, out, map);
-    return mesh_shape(h, algorithm,
+    return mesh_shape(h, options,
                       [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
                       "rectangle-with-hole mesh");
   });
@@ -270,13 +292,13 @@ namespace {
 //! (a bounding-box classifier) unless they are the rim of hole k, named "hole<k>".
 template <class OuterName>
 NamedMesh mesh_with_holes(int outer, const std::vector<Circle>& holes, double h, const std::vector<Segment>& embedded,
-                          GmshAlgorithm algorithm, OuterName outer_name, const std::string& what) {
+                          GmshOptions options, OuterName outer_name, const std::string& what) {
   gmsh::vectorpair tools, out;
   for (const Circle& c : holes) tools.push_back({2, gmsh::model::occ::addDisk(c.center[0], c.center[1], 0, c.radius, c.radius)});
   std::vector<gmsh::vectorpair> map;
   gmsh::model::occ::cut({{2, outer}}, tools, out, map);
   embed_segments(out, embedded);
-  return mesh_shape(h, algorithm, [&](double a, double b, double c, double d) {
+  return mesh_shape(h, options, [&](double a, double b, double c, double d) {
     for (std::size_t k = 0; k < holes.size(); ++k) {
       const double tol = 1e-3 * holes[k].radius + 1e-9;
       if (std::fabs(0.5 * (a + c) - holes[k].center[0]) < tol && std::fabs(0.5 * (b + d) - holes[k].center[1]) < tol &&
@@ -289,7 +311,7 @@ NamedMesh mesh_with_holes(int outer, const std::vector<Circle>& holes, double h,
 }  // namespace
 
 NamedMesh gmsh_rectangle_with_holes(double x0, double y0, double x1, double y1, const std::vector<Circle>& holes,
-                                    double h, const std::vector<Segment>& embedded, GmshAlgorithm algorithm) {
+                                    double h, const std::vector<Segment>& embedded, GmshOptions options) {
   const std::string what = "rectangle-with-holes mesh";
   require_size(h, what.c_str());
   if (!(x1 > x0) || !(y1 > y0)) throw InputError(what + ": need x1 > x0 and y1 > y0");
@@ -303,14 +325,14 @@ NamedMesh gmsh_rectangle_with_holes(double x0, double y0, double x1, double y1, 
                        " m) does not lie inside the rectangle with half an element to spare");
   }
   return guarded(what, [&] {
-    return mesh_with_holes(gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0), holes, h, embedded, algorithm,
+    return mesh_with_holes(gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0), holes, h, embedded, options,
                            [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
                            what);
   });
 }
 
 NamedMesh gmsh_disc_with_holes(double cx, double cy, double r, const std::vector<Circle>& holes, double h,
-                               const std::vector<Segment>& embedded, GmshAlgorithm algorithm) {
+                               const std::vector<Segment>& embedded, GmshOptions options) {
   const std::string what = "disc-with-holes mesh";
   require_size(h, what.c_str());
   if (!(r > 0)) throw InputError(what + ": radius " + std::to_string(r) + " m must be > 0");
@@ -319,7 +341,7 @@ NamedMesh gmsh_disc_with_holes(double cx, double cy, double r, const std::vector
     if (std::hypot(holes[k].center[0] - cx, holes[k].center[1] - cy) + holes[k].radius > r - 0.5 * h)
       throw InputError(what + ": hole " + std::to_string(k) + " does not lie inside the disc with half an element to spare");
   return guarded(what, [&] {
-    return mesh_with_holes(gmsh::model::occ::addDisk(cx, cy, 0, r, r), holes, h, embedded, algorithm,
+    return mesh_with_holes(gmsh::model::occ::addDisk(cx, cy, 0, r, r), holes, h, embedded, options,
                            [](double, double, double, double) { return std::string("outer"); }, what);
   });
 }
@@ -334,22 +356,22 @@ namespace {
 }
 }  // namespace
 
-NamedMesh gmsh_rectangle(double, double, double, double, double, const std::vector<Segment>&, GmshAlgorithm) {
+NamedMesh gmsh_rectangle(double, double, double, double, double, const std::vector<Segment>&, GmshOptions) {
   no_gmsh("rectangle mesh");
 }
-NamedMesh gmsh_disc(double, double, double, double, const std::vector<Segment>&, GmshAlgorithm) { no_gmsh("disc mesh"); }
-NamedMesh gmsh_disc_with_hole(double, double, double, double, double, const std::vector<Segment>&, GmshAlgorithm) {
+NamedMesh gmsh_disc(double, double, double, double, const std::vector<Segment>&, GmshOptions) { no_gmsh("disc mesh"); }
+NamedMesh gmsh_disc_with_hole(double, double, double, double, double, const std::vector<Segment>&, GmshOptions) {
   no_gmsh("disc-with-hole mesh");
 }
-NamedMesh gmsh_rectangle_with_hole(double, double, double, double, double, double, double, double, GmshAlgorithm) {
+NamedMesh gmsh_rectangle_with_hole(double, double, double, double, double, double, double, double, GmshOptions) {
   no_gmsh("rectangle-with-hole mesh");
 }
 NamedMesh gmsh_rectangle_with_holes(double, double, double, double, const std::vector<Circle>&, double,
-                                    const std::vector<Segment>&, GmshAlgorithm) {
+                                    const std::vector<Segment>&, GmshOptions) {
   no_gmsh("rectangle-with-holes mesh");
 }
 NamedMesh gmsh_disc_with_holes(double, double, double, const std::vector<Circle>&, double, const std::vector<Segment>&,
-                               GmshAlgorithm) {
+                               GmshOptions) {
   no_gmsh("disc-with-holes mesh");
 }
 

@@ -35,20 +35,21 @@ std::vector<int> joint_line_vertices(const TriangleMesh& mesh, const std::vector
 
 NamedMesh mesh_of_shape(const MeshSpec& s) {
   const double h = s.element_size;
+  const GmshOptions gmsh{s.algorithm, s.realisation};
   switch (s.shape) {
     case MeshShape::rectangle:
-      return gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h, s.joint_lines, s.algorithm);
-    case MeshShape::disc: return gmsh_disc(s.center[0], s.center[1], s.radius, h, s.joint_lines, s.algorithm);
+      return gmsh_rectangle(s.min[0], s.min[1], s.max[0], s.max[1], h, s.joint_lines, gmsh);
+    case MeshShape::disc: return gmsh_disc(s.center[0], s.center[1], s.radius, h, s.joint_lines, gmsh);
     case MeshShape::disc_with_hole:
       if (s.ring_mesher) return ring_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.ring_growth);
-      return gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.joint_lines, s.algorithm);
+      return gmsh_disc_with_hole(s.center[0], s.center[1], s.radius, s.hole_radius, h, s.joint_lines, gmsh);
     case MeshShape::rectangle_with_hole:
       return gmsh_rectangle_with_hole(s.min[0], s.min[1], s.max[0], s.max[1], s.center[0], s.center[1], s.hole_radius, h,
-                                      s.algorithm);
+                                      gmsh);
     case MeshShape::rectangle_with_holes:
-      return gmsh_rectangle_with_holes(s.min[0], s.min[1], s.max[0], s.max[1], s.holes, h, s.joint_lines, s.algorithm);
+      return gmsh_rectangle_with_holes(s.min[0], s.min[1], s.max[0], s.max[1], s.holes, h, s.joint_lines, gmsh);
     case MeshShape::disc_with_holes:
-      return gmsh_disc_with_holes(s.center[0], s.center[1], s.radius, s.holes, h, s.joint_lines, s.algorithm);
+      return gmsh_disc_with_holes(s.center[0], s.center[1], s.radius, s.holes, h, s.joint_lines, gmsh);
     case MeshShape::file: break;
   }
   return read_gmsh_file(s.file);

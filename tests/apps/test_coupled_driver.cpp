@@ -202,6 +202,12 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK(read({"rock.mesh.algorithm=\"frontal\""}).rock.model.mesh.algorithm == fdem::GmshAlgorithm::frontal);
   CHECK_THROWS_WITH(read({"rock.mesh.algorithm=\"voronoi\""}),
                     Catch::Contains("rock.mesh.algorithm") && Catch::Contains("frontal"));
+  // Mesh realisations: Gmsh's own mesh unless one is asked for; a negative one is refused.
+  CHECK(read({}).rock.model.mesh.realisation == 0u);
+  CHECK(read({"rock.mesh.realisation=3"}).rock.model.mesh.realisation == 3u);
+  CHECK_THROWS_WITH(read({"rock.mesh.realisation=-1"}),
+                    Catch::Contains("rock.mesh.realisation = -1") && Catch::Contains(">= 0"));
+  CHECK_THROWS_WITH(read({"rock.mesh.realisation=1.5"}), Catch::Contains("rock.mesh.realisation"));
   CHECK_THROWS_WITH(read({"probe.rock_point.1.name=\"r010\""}), Catch::Contains("probe.rock_point.1.name"));
   CHECK_THROWS_WITH(read({"analysis.damage_ring_width=-0.1"}), Catch::Contains("analysis.damage_ring_width"));
   CHECK_THROWS_WITH(read({"analysis.crushed_fraction=0"}), Catch::Contains("analysis.crushed_fraction"));

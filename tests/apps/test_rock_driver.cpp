@@ -280,6 +280,8 @@ TEST_CASE("Driver: in-situ stress on a holed disc, held and relaxed, explicit jo
   CHECK_THROWS_WITH(read({"rock.mesh.mesher=\"gmsh\"", "rock.mesh.growth=1.1"}), Catch::Contains("rock.mesh.growth"));
   // Gmsh's algorithm is for Gmsh meshes only (the ring mesher has none).
   CHECK_THROWS_WITH(read({"rock.mesh.algorithm=\"frontal\""}), Catch::Contains("rock.mesh.algorithm"));
+  // So is a mesh realisation.
+  CHECK_THROWS_WITH(read({"rock.mesh.realisation=2"}), Catch::Contains("rock.mesh.realisation") && Catch::Contains("gmsh"));
   {
     app::Case bad = read({"rock.in_situ_stress.boundaries=[\"rim\"]", "time.end=1e-6"});
     std::ostringstream l;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <map>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -145,6 +146,80 @@ TEST_CASE("Gmsh's default mesh is isotropic: no edge direction preferred, where 
   CHECK(iso6 < 0.2);
   CHECK(iso2 < 0.2);
   CHECK(lat6 > 0.5);  // the measure sees the frontal algorithm's lattice in every sector
+}
+
+namespace {
+//! The smallest altitude [m] of a mesh's triangles (twice the area over the longest edge).
+double smallest_altitude(const TriangleMesh& m) {
+  double out = 1e300;
+  for (const auto& t : m.triangles) {
+    const auto &p = m.vertices[t[0]], &q = m.vertices[t[1]], &r = m.vertices[t[2]];
+    const double two_area = std::fabs((q[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (q[1] - p[1]));
+    const double longest = std::max({std::hypot(q[0] - p[0], q[1] - p[1]), std::hypot(r[0] - q[0], r[1] - q[1]),
+                                     std::hypot(p[0] - r[0], p[1] - r[1])});
+    out = std::min(out, two_area / longest);
+  }
+  return out;
+}
+//! The fraction of a's vertices with r0 < |x| < r1 that lie within tol of one of b's (a grid of cells tol wide).
+double shared_vertices(const TriangleMesh& a, const TriangleMesh& b, double r0, double r1, double tol) {
+  std::map<std::pair<long, long>, std::vector<int>> cells;
+  auto cell = [tol](double x) { return static_cast<long>(std::floor(x / tol)); };
+  for (std::size_t v = 0; v < b.vertices.size(); ++v) cells[{cell(b.vertices[v][0]), cell(b.vertices[v][1])}].push_back(int(v));
+  long inside = 0, shared = 0;
+  for (const auto& p : a.vertices) {
+    const double r = std::hypot(p[0], p[1]);
+    if (r < r0 || r > r1) continue;
+    ++inside;
+    bool found = false;
+    for (long i = cell(p[0]) - 1; i <= cell(p[0]) + 1 && !found; ++i)
+      for (long j = cell(p[1]) - 1; j <= cell(p[1]) + 1 && !found; ++j)
+        if (const auto it = cells.find({i, j}); it != cells.end())
+          for (int v : it->second)
+            if (std::hypot(b.vertices[v][0] - p[0], b.vertices[v][1] - p[1]) < tol) found = true;
+    shared += found;
+  }
+  return inside ? static_cast<double>(shared) / inside : 0.0;
+}
+}  // namespace
+
+TEST_CASE("Gmsh mesh realisations: independent meshes of one shape, as isotropic and as fine as Gmsh's own",
+          "[fdem][mesh][gmsh]") {
+  // References. Independent: a mesh whose vertices were placed independently of another's puts a vertex within
+  // 1 % of h of one of the other's with probability about pi (0.01 h)^2 / (area per vertex, ~0.43 h^2) = 0.07 %;
+  // the same mesh turned back or jittered by 3 % keeps every vertex's neighbours, and the same realisation built
+  // twice is the same mesh. Size: the size field stays within h (1 +- a), so the triangle density differs from
+  // Gmsh's own mesh by at most (1 -+ a)^-2 - 1 = 2 % (a = 1 %); 1 % more is allowed for the count's own
+  // variation between Delaunay meshes of one size (0.3 % over turned discs). Isotropy as in the test above.
+  // Quality: the rock's stable step scales with the smallest altitude (rock_solver.hpp), Gmsh's own mesh has
+  // 0.40 h here; a realisation must keep at least 0.3 h (at most a third more steps).
+  const double R = 0.3, a = 0.03, h = 0.006, r0 = a + 3 * h, r1 = R - 3 * h;
+  const NamedMesh own = gmsh_disc_with_hole(0.0, 0.0, R, a, h);
+  const NamedMesh k1 = gmsh_disc_with_hole(0.0, 0.0, R, a, h, {}, GmshOptions{GmshAlgorithm::delaunay, 1});
+  const NamedMesh k2 = gmsh_disc_with_hole(0.0, 0.0, R, a, h, {}, GmshOptions{GmshAlgorithm::delaunay, 2});
+  const NamedMesh k1_again = gmsh_disc_with_hole(0.0, 0.0, R, a, h, {}, GmshOptions{GmshAlgorithm::delaunay, 1});
+  const double s10 = shared_vertices(k1.mesh, own.mesh, r0, r1, 0.01 * h);
+  const double s12 = shared_vertices(k1.mesh, k2.mesh, r0, r1, 0.01 * h);
+  const double n0 = own.mesh.triangles.size();
+  std::printf("realisations of a disc R %.2f m with hole %.2f m, h %.3f m: triangles %zu / %zu / %zu (own / 1 / 2), "
+              "vertices of 1 within 1 %% of h of one of the own mesh's %.4f, of 2's %.4f; smallest altitude %.3f / "
+              "%.3f / %.3f h; realisation 1 |psi_6| %.4f |psi_2| %.4f\n",
+              R, a, h, own.mesh.triangles.size(), k1.mesh.triangles.size(), k2.mesh.triangles.size(), s10, s12,
+              smallest_altitude(own.mesh) / h, smallest_altitude(k1.mesh) / h, smallest_altitude(k2.mesh) / h,
+              edge_order(k1.mesh, 6, r0, r1, 1).annulus, edge_order(k1.mesh, 2, r0, r1, 1).annulus);
+  CHECK(k1_again.mesh.vertices == k1.mesh.vertices);  // a realisation is reproducible
+  CHECK(k1_again.mesh.triangles == k1.mesh.triangles);
+  CHECK(s10 < 0.01);
+  CHECK(s12 < 0.01);
+  CHECK(shared_vertices(own.mesh, own.mesh, r0, r1, 0.01 * h) == 1.0);  // the measure finds a mesh's own vertices
+  for (const NamedMesh* m : {&k1, &k2}) {
+    CHECK(std::fabs(m->mesh.triangles.size() / n0 - 1) < 0.03);
+    CHECK(smallest_altitude(m->mesh) > 0.3 * h);
+    CHECK(m->boundary_groups.at("hole").size() > 0);
+    CHECK(std::fabs(group_length(*m, "outer") - 2 * M_PI * R) < 1e-3 * 2 * M_PI * R);
+  }
+  CHECK(edge_order(k1.mesh, 6, r0, r1, 1).annulus < 0.03);
+  CHECK(edge_order(k1.mesh, 2, r0, r1, 1).annulus < 0.03);
 }
 
 TEST_CASE("Gmsh rectangle and disc with several holes: areas, one group per hole, every edge grouped",

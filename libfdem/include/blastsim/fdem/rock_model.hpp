@@ -38,6 +38,7 @@ struct MeshSpec {
   std::string file;                  //!< .msh path (MeshShape::file)
   bool ring_mesher = false;          //!< disc_with_hole by ring_disc_with_hole() instead of Gmsh
   GmshAlgorithm algorithm = GmshAlgorithm::delaunay;  //!< of the Gmsh-built shapes (gmsh_mesh.hpp)
+  unsigned realisation = 0;  //!< of the Gmsh-built shapes: 0 Gmsh's own mesh, k > 0 another (GmshOptions)
   double ring_growth = 1.0;          //!< of the ring mesher: width ratio of neighbouring rings, in [1, 2]
   std::vector<Segment> joint_lines;  //!< [m] segments the Gmsh mesh follows: a row of joints along each
   //! [m] holes of rectangle_with_holes / disc_with_holes; boundary groups hole0, hole1, ... in this order
