@@ -10,7 +10,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
+
+#if !defined(__CUDACC__)
+#include <omp.h>
+#endif
 
 using namespace blastsim;
 using blastsim::test::same_bytes;
@@ -118,3 +123,30 @@ TEST_CASE("G12 fused gas step: the unfused step's bytes in fewer launches, no ho
     CHECK(alone.per_step.launches - fused.per_step.launches == saved);
   }
 }
+
+#if !defined(__CUDACC__)  // host threads only: on CUDA the device fixes the tree
+TEST_CASE("Sums give the same bits on any number of host threads", "[cip][G12][determinism]") {
+  // reduce_sum()'s tree depends only on n (backend.hpp): blocks of kSumBlock indices summed in index order, then
+  // init and the blocks' sums in block order. Reference: that tree, written out here, which names no thread or
+  // processor count (Thrust's OpenMP reduction, used before, split [0, n) into one part per processor). Terms
+  // of magnitudes from 1e-3 to 1e3 and both signs, so that another order would round differently.
+  auto term = [](index_t k) { return std::sin(0.7 * static_cast<double>(k)) * std::pow(10.0, static_cast<double>(k % 7) - 3); };
+  const int threads = omp_get_max_threads();
+  for (index_t n : {index_t(1), index_t(4095), index_t(4096), index_t(100001)}) {
+    double reference = 0.5;
+    for (index_t b = 0; b < n; b += kSumBlock) {
+      double s = term(b);
+      for (index_t k = b + 1; k < std::min(n, b + kSumBlock); ++k) s += term(k);
+      reference += s;
+    }
+    for (int t : {1, 2, 3, 4}) {
+      omp_set_num_threads(t);
+      const double sum = reduce_sum("test.sum", n, 0.5, [=](index_t k) { return term(k); });
+      INFO("n = " << n << ", " << t << " threads");
+      CHECK(std::memcmp(&sum, &reference, sizeof sum) == 0);
+    }
+  }
+  omp_set_num_threads(threads);
+  CHECK(reduce_sum("test.sum", 0, 0.25, [=](index_t k) { return term(k); }) == 0.25);  // nothing to add
+}
+#endif

@@ -309,11 +309,38 @@ T reduce_max(const char* label, index_t n, T init, F f) {
   return reduce_with(label, n, init, f, thrust::maximum<T>());
 }
 
-//! Sum of f(k) over k in [0, n). The summation tree depends only on n and the thread count, so a run
-//! repeated on the same backend with the same thread count gives the same bits.
+//! Indices per partial sum of reduce_sum() on host threads.
+inline constexpr index_t kSumBlock = 4096;
+
+//! Sum of f(k) over k in [0, n), plus init. On host threads the summation tree depends only on n, so a run gives
+//! the same bits whatever the number of threads or of the machine's processors: [0, n) is cut into blocks of
+//! kSumBlock indices, each block summed in index order (the blocks shared among the threads), and init plus the
+//! blocks' sums added in block order. (Thrust's OpenMP reduction splits [0, n) into omp_get_num_procs() parts,
+//! so its bits changed from one machine to another.) On CUDA Thrust's tree depends on n and the device, so the
+//! same GPU gives the same bits.
 template <class T, class F>
 T reduce_sum(const char* label, index_t n, T init, F f) {
+#if defined(__CUDACC__)
   return reduce_with(label, n, init, f, thrust::plus<T>());
+#else
+  T out = init;
+  if (n <= 0) return out;
+  ++LaunchCounts::instance().launches;
+  ++LaunchCounts::instance().host_waits;
+  KernelProfile::instance().time(label, [&] {
+    const index_t blocks = (n + kSumBlock - 1) / kSumBlock;
+    std::vector<T> part(static_cast<std::size_t>(blocks), init);  // each overwritten below
+#pragma omp parallel for schedule(static)
+    for (index_t b = 0; b < blocks; ++b) {
+      const index_t k0 = b * kSumBlock, k1 = std::min(n, k0 + kSumBlock);
+      T s = f(k0);
+      for (index_t k = k0 + 1; k < k1; ++k) s = s + f(k);
+      part[static_cast<std::size_t>(b)] = s;
+    }
+    for (const T& s : part) out = out + s;
+  });
+  return out;
+#endif
 }
 
 //! Owning array in the backend's memory. Kernels never index it; they get a raw pointer or a view.
