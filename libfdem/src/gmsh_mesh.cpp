@@ -3,6 +3,7 @@
 #include "blastsim/fdem/gmsh_mesh.hpp"
 
 #include "blastsim/core/error.hpp"
+#include "splitmix.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -136,18 +137,13 @@ NamedMesh extract_model(const std::string& source) {
   return out;
 }
 
-//! u_k of GmshOptions: a number in [-1, 1) from the square (i, j) and realisation k (SplitMix64's finaliser,
-//! Steele, Lea & Flood 2014, on the three combined), the same on every machine.
+//! u_k of GmshOptions: a number in [-1, 1) from the square (i, j) and realisation k (SplitMix64 of the three
+//! combined), the same on every machine.
 double realisation_noise(double i, double j, unsigned k) {
-  auto mix = [](std::uint64_t z) {
-    z += 0x9e3779b97f4a7c15ULL;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  };
-  const std::uint64_t z = mix(mix(mix(k) ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(i))) ^
-                              static_cast<std::uint64_t>(static_cast<std::int64_t>(j)));
-  return static_cast<double>(z >> 11) * (2.0 / 9007199254740992.0) - 1.0;  // 53 bits over [0, 2) - 1
+  using detail::splitmix64;
+  const std::uint64_t z = splitmix64(splitmix64(splitmix64(k) ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(i))) ^
+                                     static_cast<std::uint64_t>(static_cast<std::int64_t>(j)));
+  return 2 * detail::unit_interval(z) - 1;
 }
 
 void require_size(double h, const char* what) {

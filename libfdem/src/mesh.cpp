@@ -3,6 +3,7 @@
 #include "blastsim/fdem/mesh.hpp"
 
 #include "blastsim/core/error.hpp"
+#include "splitmix.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -179,16 +180,8 @@ NamedMesh ring_disc_with_hole(double cx, double cy, double r, double r_hole, dou
   return out;
 }
 
-namespace {
-//! SplitMix64 (Steele, Lea & Flood 2014): a well-mixed 64-bit hash of a counter.
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-double unit_interval(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }  // [0, 1)
-}  // namespace
+using detail::splitmix64;
+using detail::unit_interval;
 
 void perturb_mesh(TriangleMesh& mesh, double fraction, std::uint64_t seed, const std::vector<int>& fixed) {
   if (!(fraction >= 0 && fraction <= 0.25))
