@@ -37,10 +37,11 @@ enum class GmshAlgorithm { delaunay, frontal };
 //! - realisation 0: Gmsh's own mesh (the size field is h everywhere).
 //! - realisation k > 0: the size field is h (1 + a u_k(x)), a = kRealisationSizeNoise, with u_k a pseudo-random
 //!   number in [-1, 1] per square of side h (a hash of the square's indices and k, so the same k gives the same
-//!   mesh on every machine). Gmsh's refinement inserts its points in another order, and the mesh shares almost
-//!   no vertex with realisation 0 or another k (measured on a 15 mm disc: no interior vertex within 1 % of h of
-//!   one of the other mesh), while its element size changes by at most a: sampled mesh realisations for a spread
-//!   of results, whose triangle count stays within about 2 % (docs/fdem-solver.md, "Mesh realisations").
+//!   mesh on every machine). Gmsh's refinement inserts its points in another order, and the interior shares
+//!   almost no vertex with realisation 0 or another k (measured on a 6 mm disc: 0.03-0.05 % of the interior
+//!   vertices within 1 % of h of one of the other mesh's; the circles keep their vertex counts), while the
+//!   element size changes by at most a: sampled mesh realisations for a spread of results, whose triangle count
+//!   stays within about 2 % (docs/fdem-solver.md, "Mesh realisations").
 struct GmshOptions {
   GmshAlgorithm algorithm = GmshAlgorithm::delaunay;
   unsigned realisation = 0;
