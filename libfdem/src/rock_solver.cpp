@@ -194,6 +194,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.grid.cell_start.assign(1, 0), a.grid.cell_end.assign(1, 0);
   a.grid.neighbour_offset.assign(triangles_ + 1, 0), a.grid.neighbour_list.assign(1, 0);
   a.speed_peak.assign(3 * triangles_, 0.0);
+  a.travel.assign(triangles_, 0.0);
   if (options_.contact) rebuild_contact_grid();
 }
 
@@ -471,6 +472,7 @@ void RockSolver::build_contact_pairs() {
   p.touch.assign(std::max(pairs, 1), 0);  // a pair contact never evaluates (held together) never touches
   p.load.resize(std::max(pairs, 1));
   p.offset.assign(std::max(pairs, 1), -1.0);  // none yet; a rebuild carries the old ones over
+  p.reach.assign(std::max(pairs, 1), -1.0);   // every pair is tested at its first step
   p.bond.resize(std::max(pairs, 1));
   for_each_index("fdem.grid.pair_index", triangles_,
                  PairIndexKernel{offset, list, device_ptr(p.pair_offset), device_ptr(p.slot_pair), device_ptr(p.pair)});
@@ -622,6 +624,8 @@ void RockSolver::contact_forces(double dt) {
                                device_ptr(a.pairs.touch),
                                device_ptr(a.pairs.load),
                                device_ptr(a.pairs.offset),
+                               device_ptr(a.pairs.reach),
+                               device_ptr(a.travel),
                                penalty,
                                material_.contact_friction,
                                dt};
@@ -645,10 +649,11 @@ void RockSolver::contact_forces(double dt) {
 // Symplectic Euler (docs/fdem-solver.md): gather the node's forces, integrate.
 void RockSolver::update_nodes(double dt) {
   detail::RockArrays& a = *a_;
-  for_each_index("fdem.nodes", node_count(),
+  for_each_index("fdem.nodes", triangles_,
                  NodeUpdateKernel{a.node_params.view(), a.node_loads.view(), a.forces.read(),
                                   device_ptr(a.edges.joint_force), a.nodes.view(), a.ledger.view(),
-                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed_peak)});
+                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed_peak),
+                                  device_ptr(a.travel)});
   dt_prev_ = dt;
 }
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
 using namespace blastsim::fdem;
@@ -212,4 +213,70 @@ TEST_CASE("Pairs that joints release between builds of the contact lists are eva
   CHECK(ac > 1e-7);  // contact mattered
   CHECK(ab <= 1e-6 * ac);
   CHECK(a.second.contact_work == Approx(b.second.contact_work).epsilon(1e-9));
+}
+
+TEST_CASE("Contact's travel budgets: the bounds hold under rounding, and a pair skipped while apart is tested "
+          "at the first step its triangles overlap", "[fdem][contact]") {
+  // A free pair found apart with boxes a gap g apart is skipped until its triangles' travel counters grow by
+  // g / 2 (pair_reach); the counters add node_step_travel() each step through add_travel(). The skip is
+  // exact only if (1) node_step_travel() bounds the rounded move of a node, (2) add_travel() grows a counter by
+  // at least what it adds, and (3) no pair is skipped past the step its triangles first overlap.
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int moves = 0, counters = 0;
+  for (int k = 0; k < 100000; ++k) {
+    const double x = 10 * unit(rng), y = 10 * unit(rng);
+    const double vx = std::ldexp(unit(rng), static_cast<int>(20 * unit(rng))), vy = 100 * unit(rng);
+    const double dt = std::ldexp(1.0 + unit(rng), -20 - static_cast<int>(8 * (1 + unit(rng))));
+    const double xn = x + vx * dt, yn = y + vy * dt;  // as NodeUpdateKernel moves a node
+    const long double bound = node_step_travel(vx, vy, xn, yn, dt);
+    if (std::fabs(static_cast<long double>(xn) - x) <= bound && std::fabs(static_cast<long double>(yn) - y) <= bound) ++moves;
+    const double c = std::ldexp(1.0 + unit(rng), static_cast<int>(10 * unit(rng)));
+    const double s = std::ldexp(1.0 + unit(rng), static_cast<int>(-60 + 60 * (1 + unit(rng)) / 2));
+    if (static_cast<long double>(add_travel(c, s)) - c >= s) ++counters;
+  }
+  std::printf("travel bounds: %d of 100000 rounded moves within node_step_travel, %d of 100000 counters grew by "
+              "at least their step\n", moves, counters);
+  CHECK(moves == 100000);
+  CHECK(counters == 100000);
+
+  // (3) Two free triangles of 10 mm legs, B thrown at A from 2-6 mm away at 20-80 m/s in six directions. A
+  // contact force does work from the step it first acts, and none before (the ledger's contact work is exactly
+  // zero while no pair touches), so that step must be the first whose starting positions overlap (the contact
+  // kernel tests the positions a step starts from).
+  const double a = 0.01;
+  struct Throw {
+    double angle, distance, speed;
+  };
+  const Throw throws[] = {{0.0, 0.004, 50}, {0.7, 0.006, 80}, {1.9, 0.002, 20}, {2.6, 0.005, 35}, {3.5, 0.003, 60},
+                          {4.9, 0.006, 45}};
+  int caught = 0;
+  for (const Throw& th : throws) {
+    const double cx = a / 3 + (a + th.distance) * std::cos(th.angle), cy = a / 3 + (a + th.distance) * std::sin(th.angle);
+    TriangleMesh mesh;
+    mesh.vertices = {{0, 0}, {a, 0}, {0, a}, {cx, cy - a / 2}, {cx + a / 2, cy + a / 2}, {cx - a / 2, cy + a / 2}};
+    mesh.triangles = {{0, 1, 2}, {3, 4, 5}};
+    const FdemTopology topo = build_topology(mesh);
+    RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
+    std::vector<double> v(2 * s.node_count(), 0.0);
+    const double ux = a / 3 - cx, uy = a / 3 - cy, ul = std::hypot(ux, uy);
+    for (int n = 3; n < 6; ++n) v[2 * n] = th.speed * ux / ul, v[2 * n + 1] = th.speed * uy / ul;
+    s.set_velocities(v);
+    const double dt = 0.9 * s.stable_dt();
+    int overlap_step = -1, change_step = -1;
+    for (int k = 0; k < 100000 && change_step < 0; ++k) {
+      const RockSnapshot before = s.snapshot();
+      Vec2 x[2][3];
+      for (int n = 0; n < 6; ++n) x[n / 3][n % 3] = {before.x[n], before.y[n]};
+      if (overlap_step < 0 && triangles_overlap(x[0], x[1])) overlap_step = k;
+      s.step(dt);
+      if (s.energies().contact_work != 0.0) change_step = k;
+    }
+    std::printf("throw at %.1f rad from %.0f mm at %.0f m/s: triangles first overlap at step %d, contact first acts "
+                "at step %d\n", th.angle, 1e3 * th.distance, th.speed, overlap_step, change_step);
+    CHECK(overlap_step > 10);  // they start apart, so the pair is skipped for a while
+    CHECK(change_step == overlap_step);
+    if (change_step == overlap_step && overlap_step > 0) ++caught;
+  }
+  CHECK(caught == 6);
 }

@@ -95,9 +95,10 @@ BLAST_HD inline JointTraction joint_traction(double o, double s, const JointStre
     kappa += slide;
     tau = sign * fs;
   }
+  // Both terms are >= 0; an undamaged point (the most common) skips the division and the root (the same bits).
   const double dn = o > j.peak_opening ? (o - j.peak_opening) / j.opening_softening : 0.0;
-  const double ds = kappa / j.slip_softening;
-  double D = sqrt(dn * dn + ds * ds);
+  const double ds = kappa > 0.0 ? kappa / j.slip_softening : 0.0;
+  double D = dn > 0.0 || ds > 0.0 ? sqrt(dn * dn + ds * ds) : 0.0;
   D = D > previous.damage ? D : previous.damage;
   D = D < 1.0 ? D : 1.0;
   if (D > 0.0) {

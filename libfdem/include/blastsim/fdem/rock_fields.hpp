@@ -161,7 +161,8 @@ struct PairLoad {
   X(int, bond, "what holds the pair while intact: its joint (>= 0), -2 - v for one common mesh vertex v, or -1") \
   X(std::uint8_t, touch, "1 when the pair touched in this step")          \
   X(PairLoad, load, "the pair's loads, valid when touching")             \
-  X(double, offset, "pairs meeting at one mesh vertex: contact offset s (-1: bonded, or none yet; checkpointed per slot)")
+  X(double, offset, "pairs meeting at one mesh vertex: contact offset s (-1: bonded, or none yet; checkpointed per slot)") \
+  X(double, reach, "travel budget [m]: the pair stays apart while its triangles' travel sum is below it (-1: test it)")
 
 //! Read-only views of the params.
 BLASTSIM_CONST_GROUP(NodeParams, BLASTSIM_ROCK_NODE_PARAMS)

@@ -74,7 +74,7 @@ class RockSolver {
   void triangle_forces(double dt);  //!< internal forces, stresses, damping, edge pressures (one thread per triangle)
   void joint_forces();              //!< cohesive joints, damage, breakage (one thread per joint)
   void contact_forces(double dt);   //!< contact and friction (one thread a pair, then a gather); no-op without contact
-  void update_nodes(double dt);     //!< gather and integrate (one thread per node)
+  void update_nodes(double dt);     //!< gather and integrate (one thread a triangle, its three nodes in turn)
 
   // --- loads and constraints (host calls between steps) ---
   //! Prescribes the velocity of `nodes` [m/s] along x and/or y (fixed nodes: zero velocity).

@@ -29,6 +29,32 @@ BLAST_HD inline Box triangle_box(const NodeMotion<Access::read>& m, int t) {
 BLAST_HD inline bool boxes_apart(const Box& a, const Box& b, double margin) {
   return a.lo_x > b.hi_x + margin || b.lo_x > a.hi_x + margin || a.lo_y > b.hi_y + margin || b.lo_y > a.hi_y + margin;
 }
+//! Gap between two boxes [m]: the largest of the four separations along x and y, > 0 exactly when
+//! boxes_apart(a, b, 0) holds (the sign of a difference of finite doubles is exact).
+BLAST_HD inline double box_gap(const Box& a, const Box& b) {
+  return max_of(max_of(a.lo_x - b.hi_x, b.lo_x - a.hi_x), max_of(a.lo_y - b.hi_y, b.lo_y - a.hi_y));
+}
+
+//! Upper bound [m] on how far a node moved along either axis in one update x += vx dt, y += vy dt of symplectic
+//! Euler (x, y the new position): |vx| dt + |vy| dt, plus the rounding of the products, the sums and this bound
+//! (each at most 2^-53 of its result; 1e-15 of the step and the coordinates covers them).
+BLAST_HD inline double node_step_travel(double vx, double vy, double x, double y, double dt) {
+  const double step = (fabs(vx) + fabs(vy)) * dt;
+  return step + 1e-15 * (step + fabs(x) + fabs(y));
+}
+//! A travel counter after one more update: (counter + step) rounded, then raised by two units in the last
+//! place, so that it grows by at least `step` whatever the rounding. The growth from any step to a later one then
+//! bounds how far the node moved in between.
+BLAST_HD inline double add_travel(double counter, double step) { return (counter + step) * (1.0 + 4.440892098500626e-16); }
+
+
+//! The travel budget of a pair just tested [m]: with boxes a gap g > 0 apart, the pair cannot touch before its
+//! triangles' travel sum (`moved` now) grows by g, so it is skipped while the sum stays below moved + g / 2. The
+//! other half covers the rounding of the sums (at most about 1e-15 of `moved`), so a gap below 1e-12 of `moved`,
+//! or boxes that meet, get -1: the pair is tested every step.
+BLAST_HD inline double pair_reach(double gap, double moved) {
+  return gap > 0 && gap > 1e-12 * moved ? moved + 0.5 * gap : -1.0;
+}
 
 //! Uniform grid of the contact broad phase: cell size and origin, cells along x and y.
 struct ContactGridShape {
@@ -418,18 +444,30 @@ struct ContactPairKernel {
   std::uint8_t* touch;
   PairLoad* load;
   double* offset;
+  double* reach;          //!< per pair: pair_reach() of its last test
+  const double* travel;   //!< per triangle: its travel counter (NodeUpdateKernel); a side of its box moves at
+                          //!< most as far as the counter grows
   double penalty, friction, dt;
   BLAST_HD void operator()(index_t p) const {
-    touch[p] = 0;
     const int b = bond[p];
-    if (pair_held(b, joint_broken, vertex_bonded)) return;  // held together (offset stays -1)
+    if (pair_held(b, joint_broken, vertex_bonded)) {  // held together (offset stays -1)
+      touch[p] = 0;
+      return;
+    }
     const int vertex = b <= -2 ? -2 - b : -1;
-    const double s = vertex >= 0 ? offset[p] : 0.0;  // Munjiza's contact for all but pairs that meet at one vertex
     const int i = pair[p].i, j = pair[p].j;
+    // Still apart since its last test: that test left touch 0 and the offset at next_contact_offset(s, 0) = 0,
+    // which testing again would repeat (the same bytes, less work: most free pairs are neighbours a cell apart).
+    const double moved = travel[i] + travel[j];
+    if (moved < reach[p]) return;
+    touch[p] = 0;
+    const double s = vertex >= 0 ? offset[p] : 0.0;  // Munjiza's contact for all but pairs that meet at one vertex
     Vec2 x[2][3];
     nodes.triangle(i, x[0]);
     nodes.triangle(j, x[1]);
-    if (boxes_apart(triangle_box(nodes, i), triangle_box(nodes, j), 0.0) || !triangles_overlap(x[0], x[1])) {
+    const double gap = box_gap(triangle_box(nodes, i), triangle_box(nodes, j));
+    reach[p] = pair_reach(gap, moved);
+    if (gap > 0 || !triangles_overlap(x[0], x[1])) {
       if (vertex >= 0) offset[p] = next_contact_offset(s, 0.0);
       return;
     }
@@ -604,6 +642,8 @@ struct NodeSpeedPeak {
 //! next one, so linear springs' work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m
 //! every step). It also keeps the node's largest speed since the last read (`speed_peak`, node_speed_or_flag()),
 //! so the host reads one maximum after several substeps instead of one after each (RockSolver::advance()).
+//! One thread a triangle updates its three nodes in turn and adds the farthest one's node_step_travel() to the
+//! triangle's travel counter (add_travel(): contact's travel budgets).
 struct NodeUpdateKernel {
   NodeParams params;  //!< mass, held load
   NodeLoads loads;
@@ -613,8 +653,14 @@ struct NodeUpdateKernel {
   NodeLedger<Access::read_write> ledger;
   double gx, gy, dt, dt_prev;
   double* speed_peak;  //!< per node [m/s]
-  BLAST_HD void operator()(index_t ni) const {
-    const int n = static_cast<int>(ni);
+  double* travel;      //!< per triangle: its nodes' largest node_step_travel() added each step
+  BLAST_HD void operator()(index_t ti) const {
+    const int t = static_cast<int>(ti);
+    const double m0 = update(3 * t), m1 = update(3 * t + 1), m2 = update(3 * t + 2);
+    travel[t] = add_travel(travel[t], max_of(max_of(m0, m1), m2));
+  }
+  //! Node n's update; returns its node_step_travel().
+  BLAST_HD double update(int n) const {
     const SlotForce& starting = joint_force[n];                // the slot that starts at n (n is its first node)
     const SlotForce& ending = joint_force[slot_ending_at(n)];  // the slot that ends at n
     const double m = params.mass[n];
@@ -647,8 +693,9 @@ struct NodeUpdateKernel {
     nodes.vy[n] = v.y;
     const double speed = node_speed_or_flag(v.x, v.y);
     if (speed > speed_peak[n]) speed_peak[n] = speed;
-    nodes.x[n] += v.x * dt;
-    nodes.y[n] += v.y * dt;
+    const double xn = nodes.x[n] + v.x * dt, yn = nodes.y[n] + v.y * dt;
+    nodes.x[n] = xn;
+    nodes.y[n] = yn;
     NodeWork& w = ledger.work[n];
     w.pressure += f_pres.x * d.x + f_pres.y * d.y;
     w.joint -= f_joint.x * d.x + f_joint.y * d.y;
@@ -656,6 +703,7 @@ struct NodeUpdateKernel {
     w.support += support.x * d.x + support.y * d.y;
     w.gravity += f_dead.x * d.x + f_dead.y * d.y;
     w.boundary += (f_bnd.x * v.x + f_bnd.y * v.y) * dt;  // the dashpot's power at the velocity it acted on
+    return node_step_travel(v.x, v.y, xn, yn, dt);
   }
 };
 
