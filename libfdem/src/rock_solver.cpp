@@ -309,6 +309,7 @@ EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
   auto scale_velocities = [&](double f) {
     for_each_index("fdem.equilibrate.damp", node_count(),
                    ScaleVelocities{device_ptr(a.nodes.vx), device_ptr(a.nodes.vy), f});
+    reset_contact_budgets();  // the velocities no longer tell how far the last update moved the nodes
   };
   EquilibriumReport r;
   double reference = std::max(elastic(), 1e-300), window_peak = 0;
@@ -589,7 +590,7 @@ void RockSolver::triangle_forces(double dt) {
   for_each_index("fdem.triangles", triangles_,
                  TriangleForceKernel{a.nodes.read(), a.triangle_params.view(), a.edges.read(), a.edge_loads.read(), a.forces.view(),
                                      a.triangles.view(), material_.lame_lambda(), material_.shear_modulus(),
-                                     pressure_scale_, dt});
+                                     pressure_scale_, dt, device_ptr(a.travel), dt_prev_});
 }
 
 // Munjiza 2004 ch. 7: cohesive joints.
@@ -629,10 +630,11 @@ void RockSolver::contact_forces(double dt) {
                                penalty,
                                material_.contact_friction,
                                dt};
-  // The free pairs (list_free_pairs) in list order, then those released since the lists were made, in interleaved
-  // chunks: they bunch up in index space (around the hole and the cracks), and each host thread takes one
-  // contiguous run of launch indices.
-  for_each_index("fdem.contact.pairs", free_pairs_, ListedPairs{pair, device_ptr(a.free_pairs)});
+  // The free pairs (list_free_pairs), then those released since the lists were made, each in interleaved chunks:
+  // the pairs that need work bunch up in index space (around the hole and the cracks; the other free pairs are
+  // skipped on their travel budgets), and each host thread takes one contiguous run of launch indices.
+  const auto listed = Interleaved<ListedPairs>::over(ListedPairs{pair, device_ptr(a.free_pairs)}, free_pairs_);
+  for_each_index("fdem.contact.pairs", listed.launch_size(), listed);
   if (joints_ > 0) {
     const ReleasedPairsKernel rk{pair, device_ptr(a.joint_broken_listed), device_ptr(a.vertex_bonded_listed),
                                  device_ptr(a.joint_pair), device_ptr(a.vertex_pair_offset), device_ptr(a.vertex_pairs),
@@ -649,11 +651,10 @@ void RockSolver::contact_forces(double dt) {
 // Symplectic Euler (docs/fdem-solver.md): gather the node's forces, integrate.
 void RockSolver::update_nodes(double dt) {
   detail::RockArrays& a = *a_;
-  for_each_index("fdem.nodes", triangles_,
+  for_each_index("fdem.nodes", node_count(),
                  NodeUpdateKernel{a.node_params.view(), a.node_loads.view(), a.forces.read(),
                                   device_ptr(a.edges.joint_force), a.nodes.view(), a.ledger.view(),
-                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed_peak),
-                                  device_ptr(a.travel)});
+                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed_peak)});
   dt_prev_ = dt;
 }
 
@@ -671,6 +672,7 @@ void RockSolver::prescribe_velocity(const std::vector<int>& nodes, bool along_x,
   copy_from_host(a.node_loads.v_prescribed, vp);
   copy_from_host(a.nodes.vx, hvx);
   copy_from_host(a.nodes.vy, hvy);
+  reset_contact_budgets();
 }
 
 void RockSolver::set_viscous_boundary(const std::vector<int>& slots) {
@@ -713,6 +715,11 @@ void copy_node_pairs(const std::vector<double>& xy, int nodes, DeviceVector<doub
 
 void RockSolver::set_velocities(const std::vector<double>& vxy) {
   copy_node_pairs(vxy, node_count(), a_->nodes.vx, a_->nodes.vy, "set_velocities");
+  reset_contact_budgets();
+}
+
+void RockSolver::reset_contact_budgets() {
+  if (pairs_ > 0) fill_device("fdem.contact.budgets", a_->pairs.reach, -1.0);
 }
 
 void RockSolver::set_positions(const std::vector<double>& xy) {

@@ -62,7 +62,7 @@ struct RockArrays {
   DeviceVector<Vec2> probe_velocity;  // work array of probe_samples()
   // largest speed of each node since the last finish_motion() [m/s]; zero between steps, not checkpointed
   DeviceVector<double> speed_peak;
-  // per triangle: a bound on how far its nodes moved since the solver was made or restarted [m] (NodeUpdateKernel;
+  // per triangle: a bound on how far its nodes moved since the solver was made or restarted [m] (TriangleForceKernel;
   // contact's travel budgets, ContactPairsArrays::reach), not checkpointed: a restart makes the pairs anew
   DeviceVector<double> travel;
   // work arrays of fragment_labels() (two label buffers), sized on first use

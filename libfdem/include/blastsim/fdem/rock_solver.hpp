@@ -73,8 +73,12 @@ class RockSolver {
   // --- the phases of step(), public for benchmarks and profiling (call them in this order) ---
   void triangle_forces(double dt);  //!< internal forces, stresses, damping, edge pressures (one thread per triangle)
   void joint_forces();              //!< cohesive joints, damage, breakage (one thread per joint)
+  //! Contact tests every free pair at the next step (its travel budgets, docs/fdem-solver.md, start again):
+  //! called wherever the velocities change outside the node update, since the triangles' travel counters
+  //! read the velocities to know how far the last update moved the nodes.
+  void reset_contact_budgets();
   void contact_forces(double dt);   //!< contact and friction (one thread a pair, then a gather); no-op without contact
-  void update_nodes(double dt);     //!< gather and integrate (one thread a triangle, its three nodes in turn)
+  void update_nodes(double dt);     //!< gather and integrate (one thread per node)
 
   // --- loads and constraints (host calls between steps) ---
   //! Prescribes the velocity of `nodes` [m/s] along x and/or y (fixed nodes: zero velocity).

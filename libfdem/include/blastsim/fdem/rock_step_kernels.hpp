@@ -112,7 +112,9 @@ struct NeighbourSearchKernel {
 //! Cauchy stress for output, the work of its viscous damping eta D (dissipation), and the pressure loads of
 //! its exposed edges on its nodes (uniform on each edge, one-point rule, half to each node, along the inward
 //! normal; docs/coupling.md). Everything from the positions at the start of the step: the node update that
-//! moves the nodes runs after.
+//! moves the nodes runs after. It also adds to the triangle's travel counter the largest node_step_travel() of
+//! its nodes in the node update before (their velocities now are the ones that moved them: RockSolver starts
+//! contact's budgets again where it changes velocities between steps), for contact's travel budgets.
 struct TriangleForceKernel {
   NodeMotion<Access::read> nodes;
   TriangleParams params;
@@ -121,6 +123,8 @@ struct TriangleForceKernel {
   NodeForces<Access::read_write> forces;  //!< writes triangle_* and pressure_*
   TriangleState<Access::read_write> state;
   double lambda, mu, pressure_scale, dt;
+  double* travel;   //!< per triangle [m]: the travel counter
+  double dt_moved;  //!< [s] the step of the last node update (0: none yet)
   BLAST_HD void operator()(index_t ti) const {
     const int t = static_cast<int>(ti);
     Vec2 p[3], v[3];
@@ -128,6 +132,10 @@ struct TriangleForceKernel {
       p[k] = nodes.position(3 * t + k);
       v[k] = nodes.velocity(3 * t + k);
     }
+    const double m0 = node_step_travel(v[0].x, v[0].y, p[0].x, p[0].y, dt_moved);
+    const double m1 = node_step_travel(v[1].x, v[1].y, p[1].x, p[1].y, dt_moved);
+    const double m2 = node_step_travel(v[2].x, v[2].y, p[2].x, p[2].y, dt_moved);
+    travel[t] = add_travel(travel[t], max_of(max_of(m0, m1), m2));
     const Mat2 inv_F0 = params.inv_f0[t];
     const Mat2 FX = edge_matrix(p[0], p[1], p[2]);
     const Mat2 LX = edge_matrix(v[0], v[1], v[2]);
@@ -445,8 +453,8 @@ struct ContactPairKernel {
   PairLoad* load;
   double* offset;
   double* reach;          //!< per pair: pair_reach() of its last test
-  const double* travel;   //!< per triangle: its travel counter (NodeUpdateKernel); a side of its box moves at
-                          //!< most as far as the counter grows
+  const double* travel;   //!< per triangle: its travel counter (TriangleForceKernel); a side of its box moves
+                          //!< at most as far as the counter grows
   double penalty, friction, dt;
   BLAST_HD void operator()(index_t p) const {
     const int b = bond[p];
@@ -642,8 +650,6 @@ struct NodeSpeedPeak {
 //! next one, so linear springs' work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m
 //! every step). It also keeps the node's largest speed since the last read (`speed_peak`, node_speed_or_flag()),
 //! so the host reads one maximum after several substeps instead of one after each (RockSolver::advance()).
-//! One thread a triangle updates its three nodes in turn and adds the farthest one's node_step_travel() to the
-//! triangle's travel counter (add_travel(): contact's travel budgets).
 struct NodeUpdateKernel {
   NodeParams params;  //!< mass, held load
   NodeLoads loads;
@@ -653,14 +659,8 @@ struct NodeUpdateKernel {
   NodeLedger<Access::read_write> ledger;
   double gx, gy, dt, dt_prev;
   double* speed_peak;  //!< per node [m/s]
-  double* travel;      //!< per triangle: its nodes' largest node_step_travel() added each step
-  BLAST_HD void operator()(index_t ti) const {
-    const int t = static_cast<int>(ti);
-    const double m0 = update(3 * t), m1 = update(3 * t + 1), m2 = update(3 * t + 2);
-    travel[t] = add_travel(travel[t], max_of(max_of(m0, m1), m2));
-  }
-  //! Node n's update; returns its node_step_travel().
-  BLAST_HD double update(int n) const {
+  BLAST_HD void operator()(index_t ni) const {
+    const int n = static_cast<int>(ni);
     const SlotForce& starting = joint_force[n];                // the slot that starts at n (n is its first node)
     const SlotForce& ending = joint_force[slot_ending_at(n)];  // the slot that ends at n
     const double m = params.mass[n];
@@ -693,9 +693,8 @@ struct NodeUpdateKernel {
     nodes.vy[n] = v.y;
     const double speed = node_speed_or_flag(v.x, v.y);
     if (speed > speed_peak[n]) speed_peak[n] = speed;
-    const double xn = nodes.x[n] + v.x * dt, yn = nodes.y[n] + v.y * dt;
-    nodes.x[n] = xn;
-    nodes.y[n] = yn;
+    nodes.x[n] += v.x * dt;
+    nodes.y[n] += v.y * dt;
     NodeWork& w = ledger.work[n];
     w.pressure += f_pres.x * d.x + f_pres.y * d.y;
     w.joint -= f_joint.x * d.x + f_joint.y * d.y;
@@ -703,7 +702,6 @@ struct NodeUpdateKernel {
     w.support += support.x * d.x + support.y * d.y;
     w.gravity += f_dead.x * d.x + f_dead.y * d.y;
     w.boundary += (f_bnd.x * v.x + f_bnd.y * v.y) * dt;  // the dashpot's power at the velocity it acted on
-    return node_step_travel(v.x, v.y, xn, yn, dt);
   }
 };
 
