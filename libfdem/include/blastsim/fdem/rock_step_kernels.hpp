@@ -44,9 +44,10 @@ BLAST_HD inline double node_step_travel(double vx, double vy, double x, double y
 }
 //! A travel counter after one more update: (counter + step) rounded, then raised by two units in the last
 //! place, so that it grows by at least `step` whatever the rounding. The growth from any step to a later one then
-//! bounds how far the node moved in between.
-BLAST_HD inline double add_travel(double counter, double step) { return (counter + step) * (1.0 + 4.440892098500626e-16); }
-
+//! bounds how far the nodes moved in between.
+BLAST_HD inline double add_travel(double counter, double step) {
+  return (counter + step) * (1.0 + 4.440892098500626e-16);
+}
 
 //! The travel budget of a pair just tested [m]: with boxes a gap g > 0 apart, the pair cannot touch before its
 //! triangles' travel sum (`moved` now) grows by g, so it is skipped while the sum stays below moved + g / 2. The
