@@ -590,7 +590,7 @@ void RockSolver::triangle_forces(double dt) {
   for_each_index("fdem.triangles", triangles_,
                  TriangleForceKernel{a.nodes.read(), a.triangle_params.view(), a.edges.read(), a.edge_loads.read(), a.forces.view(),
                                      a.triangles.view(), material_.lame_lambda(), material_.shear_modulus(),
-                                     pressure_scale_, dt, device_ptr(a.travel), dt_prev_});
+                                     pressure_scale_, dt, options_.contact ? device_ptr(a.travel) : nullptr, dt_prev_});
 }
 
 // Munjiza 2004 ch. 7: cohesive joints.

@@ -73,10 +73,6 @@ class RockSolver {
   // --- the phases of step(), public for benchmarks and profiling (call them in this order) ---
   void triangle_forces(double dt);  //!< internal forces, stresses, damping, edge pressures (one thread per triangle)
   void joint_forces();              //!< cohesive joints, damage, breakage (one thread per joint)
-  //! Contact tests every free pair at the next step (its travel budgets, docs/fdem-solver.md, start again):
-  //! called wherever the velocities change outside the node update, since the triangles' travel counters
-  //! read the velocities to know how far the last update moved the nodes.
-  void reset_contact_budgets();
   void contact_forces(double dt);   //!< contact and friction (one thread a pair, then a gather); no-op without contact
   void update_nodes(double dt);     //!< gather and integrate (one thread per node)
 
@@ -192,6 +188,10 @@ class RockSolver {
   void build_contact_pairs();  //!< pair numbering from the candidate lists (rebuild, checkpoint read)
   void list_free_pairs();      //!< contact's work lists from the pairs and the joints' state (build_contact_pairs)
   void update_vertex_bonds();  //!< which mesh vertices still have all their joints intact (VertexBondKernel)
+  //! Contact tests every free pair at the next step (its travel budgets, docs/fdem-solver.md, start again):
+  //! called wherever the velocities change outside the node update, since the triangles' travel counters
+  //! read the velocities to know how far the last update moved the nodes.
+  void reset_contact_budgets();
 
   RockMaterial material_;
   RockOptions options_;

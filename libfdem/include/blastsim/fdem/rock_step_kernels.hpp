@@ -124,7 +124,7 @@ struct TriangleForceKernel {
   NodeForces<Access::read_write> forces;  //!< writes triangle_* and pressure_*
   TriangleState<Access::read_write> state;
   double lambda, mu, pressure_scale, dt;
-  double* travel;   //!< per triangle [m]: the travel counter
+  double* travel;   //!< per triangle [m]: the travel counter (null without contact: not kept)
   double dt_moved;  //!< [s] the step of the last node update (0: none yet)
   BLAST_HD void operator()(index_t ti) const {
     const int t = static_cast<int>(ti);
@@ -133,10 +133,12 @@ struct TriangleForceKernel {
       p[k] = nodes.position(3 * t + k);
       v[k] = nodes.velocity(3 * t + k);
     }
-    const double m0 = node_step_travel(v[0].x, v[0].y, p[0].x, p[0].y, dt_moved);
-    const double m1 = node_step_travel(v[1].x, v[1].y, p[1].x, p[1].y, dt_moved);
-    const double m2 = node_step_travel(v[2].x, v[2].y, p[2].x, p[2].y, dt_moved);
-    travel[t] = add_travel(travel[t], max_of(max_of(m0, m1), m2));
+    if (travel) {
+      const double m0 = node_step_travel(v[0].x, v[0].y, p[0].x, p[0].y, dt_moved);
+      const double m1 = node_step_travel(v[1].x, v[1].y, p[1].x, p[1].y, dt_moved);
+      const double m2 = node_step_travel(v[2].x, v[2].y, p[2].x, p[2].y, dt_moved);
+      travel[t] = add_travel(travel[t], max_of(max_of(m0, m1), m2));
+    }
     const Mat2 inv_F0 = params.inv_f0[t];
     const Mat2 FX = edge_matrix(p[0], p[1], p[2]);
     const Mat2 LX = edge_matrix(v[0], v[1], v[2]);
