@@ -135,10 +135,14 @@ inline auto launch_policy() {
 #if !defined(__CUDACC__)
 namespace detail {
 //! One host thread's share [b, e) of an index loop, with f and everything it calls inlined into the loop (GCC's
-//! `flatten`; it otherwise keeps the larger kernels and their helpers out of line).
+//! `flatten`; it otherwise keeps the larger kernels and their helpers out of line). The loop calls a copy of f
+//! on this thread's stack: the kernel's stores through its pointers cannot reach a copy whose address never
+//! leaves the function, so the compiler keeps the kernel's parameters (views, dt, flags) in registers instead of
+//! reloading them from the shared functor after every store.
 template <class F>
 BLAST_FLATTEN void run_range(index_t b, index_t e, const F& f) {
-  for (index_t k = b; k < e; ++k) f(k);
+  const F local = f;
+  for (index_t k = b; k < e; ++k) local(k);
 }
 //! Thread t's share [b, e) of [0, n) split into equal contiguous blocks (OpenMP's static schedule).
 inline void thread_block(index_t n, index_t& b, index_t& e) {
