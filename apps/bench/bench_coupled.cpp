@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
         {"rock joints", {"fdem.joints"}, 0, joints * (30 * 8 + 16 + 12 * 8)},
         {"rock contact search", {"fdem.grid", "fdem.contact.count", "fdem.contact.fill"}, 0, 0},
         {"rock contact forces", {"fdem.contact"}, 0, tri * 12 * 8},
-        {"rock integration", {"fdem.nodes", "fdem.vmax", "fdem.speed_peak"}, 0, nodes * 33 * 8},
+        {"rock integration", {"fdem.nodes", "fdem.vmax", "fdem.speed2_peak"}, 0, nodes * 33 * 8},
         {"coupling masks", {"ibm.cover", "ibm.cells", "ibm.clear_owner"}, 0, cells * (2 * 4 + 1) + tri * 6 * 8},
         {"coupling velocities", {"ibm.face_velocity"}, 0, cells * 2 * (8 + 1 + 4)},
         {"coupling pressures", {"ibm.edge_pressure"}, 0, 3 * tri * (8 + 8 + 1)},

@@ -193,7 +193,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.grid.sorted_triangles.assign(triangles_, 0), a.grid.cell_key.assign(triangles_, 0);
   a.grid.cell_start.assign(1, 0), a.grid.cell_end.assign(1, 0);
   a.grid.neighbour_offset.assign(triangles_ + 1, 0), a.grid.neighbour_list.assign(1, 0);
-  a.speed_peak.assign(3 * triangles_, 0.0);
+  a.speed2_peak.assign(3 * triangles_, 0.0);
   a.travel.assign(triangles_, 0.0);
   if (options_.contact) rebuild_contact_grid();
 }
@@ -523,7 +523,7 @@ void RockSolver::step(double dt) {
   finish_motion(reduce_max("fdem.vmax", node_count(), 0.0, peak_speed_kernel()));
 }
 
-NodeSpeedPeak RockSolver::peak_speed_kernel() const { return NodeSpeedPeak{device_ptr(a_->speed_peak)}; }
+NodeSpeedPeak RockSolver::peak_speed_kernel() const { return NodeSpeedPeak{device_ptr(a_->speed2_peak)}; }
 
 void RockSolver::advance(double dt, int substeps, const std::function<void(int)>& before_step) {
   if (substeps < 1) throw std::invalid_argument("RockSolver::advance: substeps must be at least 1");
@@ -554,7 +554,7 @@ void RockSolver::advance(double dt, int substeps, const std::function<void(int)>
 }
 
 void RockSolver::finish_motion(double v_max) {
-  fill_device("fdem.speed_peak.clear", a_->speed_peak, 0.0);
+  fill_device("fdem.speed2_peak.clear", a_->speed2_peak, 0.0);
   const double advanced = pending_time_;
   pending_time_ = 0;
   if (!(v_max < 1e300)) {
@@ -654,7 +654,7 @@ void RockSolver::update_nodes(double dt) {
   for_each_index("fdem.nodes", node_count(),
                  NodeUpdateKernel{a.node_params.view(), a.node_loads.view(), a.forces.read(),
                                   device_ptr(a.edges.joint_force), a.nodes.view(), a.ledger.view(),
-                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed_peak)});
+                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed2_peak)});
   dt_prev_ = dt;
 }
 

@@ -60,8 +60,9 @@ struct RockArrays {
   DeviceVector<ProbeStation> probe_station;
   DeviceVector<ProbePeak> probe_peak;
   DeviceVector<Vec2> probe_velocity;  // work array of probe_samples()
-  // largest speed of each node since the last finish_motion() [m/s]; zero between steps, not checkpointed
-  DeviceVector<double> speed_peak;
+  // square of the largest speed of each node since the last finish_motion() [m2/s2]; zero between steps, not
+  // checkpointed
+  DeviceVector<double> speed2_peak;
   // per triangle: a bound on how far its nodes moved since the solver was made or restarted [m] (TriangleForceKernel;
   // contact's travel budgets, ContactPairsArrays::reach), not checkpointed: a restart makes the pairs anew
   DeviceVector<double> travel;

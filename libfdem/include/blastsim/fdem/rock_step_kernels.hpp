@@ -633,17 +633,23 @@ BLAST_HD inline Vec2 viscous_boundary_velocity(double m, double dt, const Mat2& 
   return {m * (inv.a * v_free.x + inv.b * v_free.y), m * (inv.c * v_free.x + inv.d * v_free.y)};
 }
 
-//! A node's speed [m/s], or 1e308 where it is not finite (so a maximum over nodes flags instability).
-BLAST_HD inline double node_speed_or_flag(double vx, double vy) {
+//! The square of a node's speed [m2/s2], or kSpeedFlag where it is not finite or above 1e300 (so that a maximum
+//! over nodes flags instability).
+inline constexpr double kSpeedFlag = 1e308;
+BLAST_HD inline double node_speed2_or_flag(double vx, double vy) {
   const double s = vx * vx + vy * vy;
-  return s == s && s < 1e300 ? sqrt(s) : 1e308;
+  return s == s && s < 1e300 ? s : kSpeedFlag;
 }
 
-//! Node n's largest speed since the last read (kept by NodeUpdateKernel), for a maximum over the nodes
-//! (RockSolver::peak_speed_kernel()).
+//! A speed [m/s] from node_speed2_or_flag(): its root, or the flag itself.
+BLAST_HD inline double speed_from_speed2(double s2) { return s2 < kSpeedFlag ? sqrt(s2) : kSpeedFlag; }
+
+//! Node n's largest speed since the last read (NodeUpdateKernel keeps the largest square), for a maximum over
+//! the nodes (RockSolver::peak_speed_kernel()). The root of the largest square is the largest of the roots, bit
+//! for bit (a correctly rounded square root never decreases), so one root a node and read serves all substeps.
 struct NodeSpeedPeak {
-  const double* peak;
-  BLAST_HD double operator()(index_t n) const { return peak[n]; }
+  const double* peak2;
+  BLAST_HD double operator()(index_t n) const { return speed_from_speed2(peak2[n]); }
 };
 
 //! Node update (symplectic Euler, docs/fdem-solver.md): gathers the node's forces (its triangle, the joints
@@ -651,7 +657,8 @@ struct NodeSpeedPeak {
 //! dashpots implicitly, applies prescribed velocities, moves the node, and accumulates the work of each kind of
 //! force by the trapezoid rule: the force at x_n works over half of the previous displacement and half of the
 //! next one, so linear springs' work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m
-//! every step). It also keeps the node's largest speed since the last read (`speed_peak`, node_speed_or_flag()),
+//! every step). It also keeps the square of the node's largest speed since the last read (`speed2_peak`,
+//! node_speed2_or_flag()),
 //! so the host reads one maximum after several substeps instead of one after each (RockSolver::advance()).
 struct NodeUpdateKernel {
   NodeParams params;  //!< mass, held load
@@ -661,7 +668,7 @@ struct NodeUpdateKernel {
   NodeMotion<Access::read_write> nodes;
   NodeLedger<Access::read_write> ledger;
   double gx, gy, dt, dt_prev;
-  double* speed_peak;  //!< per node [m/s]
+  double* speed2_peak;  //!< per node [m2/s2]
   BLAST_HD void operator()(index_t ni) const {
     const int n = static_cast<int>(ni);
     const SlotForce& starting = joint_force[n];                // the slot that starts at n (n is its first node)
@@ -694,8 +701,8 @@ struct NodeUpdateKernel {
     ledger.support[n] = support;
     nodes.vx[n] = v.x;
     nodes.vy[n] = v.y;
-    const double speed = node_speed_or_flag(v.x, v.y);
-    if (speed > speed_peak[n]) speed_peak[n] = speed;
+    const double speed2 = node_speed2_or_flag(v.x, v.y);
+    if (speed2 > speed2_peak[n]) speed2_peak[n] = speed2;
     nodes.x[n] += v.x * dt;
     nodes.y[n] += v.y * dt;
     NodeWork& w = ledger.work[n];
