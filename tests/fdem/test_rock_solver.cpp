@@ -5,6 +5,7 @@
 #include "blastsim/fdem/joint_kernels.hpp"
 #include "blastsim/fdem/rock_analysis.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/fdem/rock_step_kernels.hpp"
 #include "catch.hpp"
 #include "rock_cases.hpp"
 
@@ -14,6 +15,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <random>
 #include <string>
 
 using namespace blastsim::fdem;
@@ -57,6 +60,43 @@ TEST_CASE("F7: a body at rest stays at rest: no force, no damage, constant energ
   CHECK(max_damage == 0.0);
   CHECK(e.broken_joints == 0);
   CHECK(e.kinetic + e.strain < 1e-24 * rock.youngs_modulus * 0.016);
+}
+
+TEST_CASE("The peak speed kept as a square: the root of the largest square is the largest root, bit for bit",
+          "[fdem][instability]") {
+  // NodeUpdateKernel keeps max(vx^2 + vy^2) over a coupled step's substeps and NodeSpeedPeak takes one root; the
+  // reference is the largest of the per-substep roots, the speed itself. The flag of a speed that is not finite
+  // (or whose square exceeds 1e300) must survive either way.
+  const auto speed_or_flag = [](double vx, double vy) {
+    const double s = vx * vx + vy * vy;
+    return s == s && s < 1e300 ? std::sqrt(s) : kSpeedFlag;
+  };
+  std::mt19937_64 gen(20261207);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-320, 160), substeps(1, 30);
+  const double specials[] = {0.0, -0.0, 5e-324, 1e-160, 1e150, 7e149, std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::quiet_NaN()};
+  int cases = 0, equal = 0, flagged = 0;
+  for (; cases < 20000; ++cases) {
+    double peak_root = 0.0, peak_square = 0.0;  // both start cleared, as after finish_motion()
+    const int k = substeps(gen);
+    for (int q = 0; q < k; ++q) {
+      double v[2];
+      for (double& c : v)
+        c = gen() % 50 == 0 ? specials[gen() % 8] : mantissa(gen) * std::ldexp(1.0, exponent(gen) / 2);
+      const double root = speed_or_flag(v[0], v[1]), square = node_speed2_or_flag(v[0], v[1]);
+      if (root > peak_root) peak_root = root;
+      if (square > peak_square) peak_square = square;
+    }
+    const double read = NodeSpeedPeak{&peak_square}(0);
+    if (std::memcmp(&read, &peak_root, sizeof read) == 0) ++equal;
+    if (peak_root == kSpeedFlag) ++flagged;
+  }
+  std::printf("peak speed from its square: %d of %d maxima identical to the largest root (%d flagged)\n", equal,
+              cases, flagged);
+  CHECK(equal == cases);
+  CHECK(flagged > 0);
+  CHECK(flagged < cases);
 }
 
 TEST_CASE("A triangle turned inside out stops the rock step, naming the triangle", "[fdem][instability]") {

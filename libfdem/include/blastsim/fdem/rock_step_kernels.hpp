@@ -658,8 +658,8 @@ struct NodeSpeedPeak {
 //! force by the trapezoid rule: the force at x_n works over half of the previous displacement and half of the
 //! next one, so linear springs' work equals their energy change (f . v_new dt alone would add f^2 dt^2 / 2m
 //! every step). It also keeps the square of the node's largest speed since the last read (`speed2_peak`,
-//! node_speed2_or_flag()),
-//! so the host reads one maximum after several substeps instead of one after each (RockSolver::advance()).
+//! node_speed2_or_flag()), so the host reads one maximum after several substeps instead of one after each
+//! (RockSolver::advance()).
 struct NodeUpdateKernel {
   NodeParams params;  //!< mass, held load
   NodeLoads loads;
