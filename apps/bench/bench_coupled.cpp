@@ -5,8 +5,9 @@
 //! Table 2 rock, in air, on an n x n grid over 2.24 m; the rock meshed in rings (fdem::ring_disc_with_hole,
 //! no Gmsh, so it runs on machines without it). One dt for both solvers, as in the paper. After warm-up
 //! steps (the hole gas has loaded the wall) every kernel is timed through KernelProfile (each launch
-//! synchronised) and the labels are summed into the phases of issue #6. Floor model: the bytes each phase
-//! must move at least (docs/performance.md, "Coupled step"), over the measured copy bandwidth.
+//! synchronised) and the labels are summed into the phases of the gas, rock and coupling steps. Floor model:
+//! the bytes each phase must move at least (docs/performance.md, "Coupled step"), over the measured copy
+//! bandwidth.
 #include "bench_common.hpp"
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/mesh.hpp"

@@ -18,7 +18,7 @@ struct ContactError {
   double over = 0, under = 0;   // density above the larger / below the smaller initial value, by the jump
 };
 
-//! A contact between densities rho_l and rho_r at p = 2.466, u = 1.528 (the issue's data) in a tube of n cells,
+//! A contact between densities rho_l and rho_r at p = 2.466, u = 1.528 (G8's data) in a tube of n cells,
 //! x0 = 0.3, run with the driver's default scheme; the worst errors seen at four times up to t = 0.14.
 ContactError advect_contact(int n, double rho_l, double rho_r, cip::Transport transport = cip::Transport::conservative) {
   const double p = 2.466, u = 1.528;
@@ -181,7 +181,7 @@ TEST_CASE("G16 contacts born in shock tubes: density within 2 % of the jump beyo
   // unit tube, diaphragm at 0.5, t = 0.14) and Sod's tube at 100 : 1 in density and pressure; 400 cells. A
   // contact that forms from the Riemann problem separates the exact star densities rho*_L and rho*_R; within
   // 15 cells of the exact contact x0 + u* t no cell may lie more than 2 % of |rho*_R - rho*_L| above the larger
-  // or below the smaller (issue #31's bound; the MUSCL-Hancock/HLLC reference of G9 stays within 0.2 %).
+  // or below the smaller (the MUSCL-Hancock/HLLC reference of G9 stays within 0.2 %).
   struct Case {
     const char* name;
     Primitive L, R;

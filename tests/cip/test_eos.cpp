@@ -50,7 +50,7 @@ TEST_CASE("G10 JWL products: isentrope, ideal-gas limit, sound speed, inverse", 
                 "isentropic derivative: worst %.1e\n",
                 preset.name, preset.source, j.isentrope_pressure(1.0) / 1e9, gamma_far, 1 + j.omega, worst);
   }
-  // The figure for ANFO: p_s(V = 1) = 1.61 GPa.
+  // The expected figure for ANFO: p_s(V = 1) = 1.61 GPa (docs/validation.md G10).
   CHECK_THAT(cip::EquationOfState::jwl_preset("ANFO").p.isentrope_pressure(1.0), WithinRel(1.61e9, 0.01));
 }
 

@@ -391,8 +391,8 @@ TEST_CASE("G15 products | air tubes at density ratios 10 to 1e4: the pressure on
   // - ratios 10 to 1000: the pressure on each side within 1 % of p*;
   // - ratio 1e4: the pressure error on each side within 1.5 times the reference's (G9's bound); the ratio 1e4 also
   //   on 3200 cells and every ratio on 400 cells reported;
-  // - ratios 10 to 1000: each phase density's error within 1.5 times the reference's (at 1e4 reported). Issue #31
-  //   asks 2 %; neither textbook scheme gives it there (docs/gas-solver.md, "Phase densities beside the contact").
+  // - ratios 10 to 1000: each phase density's error within 1.5 times the reference's (at 1e4 reported). The target
+  //   is 2 %; neither textbook scheme gives it there (docs/gas-solver.md, "Phase densities beside the contact").
   // Reported: the products' density in the mixed cells (0.01 < alpha < 0.99), largest deviation from rho1*.
   for (const char* preset : {"ANFO", "TNT"}) {
     const cip::JwlParameters jp = cip::EquationOfState::jwl_preset(preset).p;

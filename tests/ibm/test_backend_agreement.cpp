@@ -1,6 +1,6 @@
 //! \file test_backend_agreement.cpp
 //! \brief Backend agreement: a short coupled blast (gas, rock, coupling) ends with the same totals on this
-//! backend as the CPU backend's run recorded in data/coupled_fingerprint_cpu.txt (issue #6).
+//! backend as the CPU backend's run recorded in data/coupled_fingerprint_cpu.txt.
 //!
 //! The case is the single-hole blast at a small size: Table 1 gas in the 50 mm hole of a 0.93 m disc meshed in
 //! rings of 30 mm triangles (no Gmsh: it runs on the GPU machine), 192 x 192 cells over 2.24 m, 20 us (before the first crack, so

@@ -327,8 +327,9 @@ TEST_CASE("K6 with face forces: the budget closes within 5 % of the gas's work o
   // The fully coupled ANFO charge of the test above (products at rho0, E0 / rho0 = 1.68 GPa placed in the 20 mm
   // hole of elastic rock, 5 mm cells), loading the rock with face forces. Exact: energy is conserved, so the
   // coupled budget's residual (gas + rock energy against the start) is zero; asserted within 5 % of the gas's
-  // work on the rock at 1, 5 and 20 us (issue #31's bound). The gas pays the rock's work over each step
-  // (docs/coupling.md, "Work over a step"); without that the residual is +41 % of the work at 1 us.
+  // work on the rock at 1, 5 and 20 us (the coupled budget's bound, docs/validation.md S4). The gas pays the
+  // rock's work over each step (docs/coupling.md, "Work over a step"); without that the residual is +41 % of the
+  // work at 1 us.
   const double a = 0.02;
   const ibm::ChargeProducts q = anfo_products();
   cip::GasSolver gas(cip::GasGrid::from_box(64, 64, -0.16, 0.16, -0.16, 0.16), air_and_anfo());

@@ -253,7 +253,7 @@ using test::table1_gas;
 TEST_CASE("Coupled energy: gas energy lost by a pressurised hole equals the work done on intact rock", "[long][ibm][energy]") {
   // Table 1 gas in a 20 mm hole of a 100 mm disc of elastic rock, in air. Budget of the whole gas: what it
   // lost (less what left the grid, plus what cell transitions and immersed faces gave it) against the work of the edge
-  // pressures on the rock (RockEnergies::pressure_work). Bound 5 % (issue #4). The cut cells around the
+  // pressures on the rock (RockEnergies::pressure_work). Bound 5 %. The cut cells around the
   // hole hold the hole gas.
   // The three gas loads (docs/coupling.md "Gas -> rock"): the paper's edge pressures, the face forces, and edge
   // pressures that the gas pays for.
@@ -292,7 +292,7 @@ TEST_CASE("Coupled energy: gas energy lost by a pressurised hole equals the work
 
 TEST_CASE("Rock subcycling: the energy budget closes and the rock responds as with one dt", "[ibm][energy][subcycling][heavy]") {
   // The energy case above (80 x 80 cells, 40 us) run twice: one dt for both solvers, and gas steps at the
-  // gas's Courant limit with the rock subcycling. Bounds: the budget within 5 % (issue #4's bound), the work on
+  // gas's Courant limit with the rock subcycling. Bounds: the budget within 5 % (as above), the work on
   // the rock and the rock's kinetic + strain energy within 2 % of the single-dt run's. Both gas loads, each at
   // its recommended Courant number (the paper's 0.1 with edge pressures, 0.4 with face forces and with paid edge
   // pressures).

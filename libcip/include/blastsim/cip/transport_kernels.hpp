@@ -52,7 +52,7 @@ BLAST_HD inline double swept_value(double f_up, double g_n, double g_t, double w
 //! second difference where the data have an extremum (first differences change sign) with same-signed
 //! second differences on both sides (a smooth extremum), zero otherwise (after the monotonicity-preserving
 //! bounds of Suresh & Huynh, JCP 136 (1997) 83). Without the extremum test the corner of a step onto a
-//! plateau passed as smooth and a density spike grew there (issue #15; docs/gas-solver.md "Contacts").
+//! plateau passed as smooth and a density spike grew there (docs/gas-solver.md "Contacts").
 BLAST_HD inline double extremum_slack(double f0, double f1, double f2, double f3, double fraction) {
   const double d0 = f1 - f0, d1 = f2 - f1, d2 = f3 - f2;
   // Only where the differences change sign (an extremum, not a plateau beside a jump) is there an extremum.
