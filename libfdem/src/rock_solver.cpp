@@ -177,6 +177,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.joints.separation.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.broken.assign(joints_, 0);
+  a.joint_tangent.assign(joints_, Vec2{0.0, 0.0});
   // Joints per mesh vertex (CSR): each joint touches the two vertices of its edge (its ends 2 j and 2 j + 1).
   const int vertices = nodes > 0 ? *std::max_element(vertex.begin(), vertex.end()) + 1 : 0;
   std::vector<int> end_vertex(2 * static_cast<std::size_t>(joints_));
@@ -593,12 +594,14 @@ void RockSolver::triangle_forces(double dt) {
                                      pressure_scale_, dt, options_.contact ? device_ptr(a.travel) : nullptr, dt_prev_});
 }
 
-// Munjiza 2004 ch. 7: cohesive joints.
+// Munjiza 2004 ch. 7: cohesive joints, in two passes (the geometry, then the joint law and the forces).
 void RockSolver::joint_forces() {
   detail::RockArrays& a = *a_;
-  if (joints_ > 0)
-    for_each_index("fdem.joints", joints_,
-                   JointForceKernel{a.nodes.read(), a.joint_params.view(), a.joints.view(), a.edges.view()});
+  if (joints_ == 0) return;
+  for_each_index("fdem.joints.geometry", joints_,
+                 JointGeometryKernel{a.nodes.read(), a.joint_params.view(), a.joints.view(), device_ptr(a.joint_tangent)});
+  for_each_index("fdem.joints", joints_,
+                 JointForceKernel{a.joint_params.view(), a.joints.view(), a.edges.view(), device_ptr(a.joint_tangent)});
 }
 
 void RockSolver::update_vertex_bonds() {

@@ -56,6 +56,9 @@ struct RockArrays {
   // those released since (RockSolver::contact_forces)
   DeviceVector<int> free_pairs, joint_pair, vertex_pair_offset, vertex_pairs;
   DeviceVector<std::uint8_t> joint_broken_listed, vertex_bonded_listed;
+  // per joint: the unit tangent of its faces in the current substep (JointGeometryKernel, read by
+  // JointForceKernel); not checkpointed
+  DeviceVector<Vec2> joint_tangent;
   // velocity probes (set_probes): their stations (fixed) and peaks (checkpointed as rock.probes.peak)
   DeviceVector<ProbeStation> probe_station;
   DeviceVector<ProbePeak> probe_peak;

@@ -176,19 +176,60 @@ struct TriangleForceKernel {
   }
 };
 
-//! Cohesive joints (Munjiza 2004, ch. 7; docs/fdem-solver.md): opening and slip at the edge's two ends and
-//! middle (weights 1/6, 2/3, 1/6 of the initial length), the joint law with irreversible damage, and the
+//! Geometry of an intact cohesive joint (Munjiza 2004, ch. 7; docs/fdem-solver.md): the unit tangent t of its
+//! two faces' mean direction, and the opening and slip at the edge's two ends and middle, into
+//! JointState::separation. The first of the two passes of the joint forces: it holds the joint's latency chain
+//! (the node gathers, a root and a division), which JointForceKernel then reads, so that a host thread overlaps
+//! the chains of successive joints instead of waiting on each.
+struct JointGeometryKernel {
+  NodeMotion<Access::read> nodes;
+  JointParams params;
+  JointState<Access::read_write> state;  //!< writes separation
+  Vec2* tangent;                         //!< per joint: t of this substep
+  BLAST_HD void operator()(index_t ji) const {
+    const int j = static_cast<int>(ji);
+    if (state.broken[j]) return;
+    const JointNodes jn = params.nodes[j];
+    // In-situ stress: the joint starts at the opening and slip whose tractions carry it (joint_preload()). No
+    // addition without one, so a joint without in-situ stress keeps the same bits (signed zeros included).
+    const JointPreload pre = params.preload[j];
+    const bool preloaded = pre.opening != 0.0 || pre.slip != 0.0;
+    const Vec2 pa0 = nodes.position(jn.a0), pa1 = nodes.position(jn.a1);
+    const Vec2 pb0 = nodes.position(jn.b0), pb1 = nodes.position(jn.b1);
+    // Mean direction of the two faces (both run a0 -> a1), and the normal pointing out of face A.
+    Vec2 t{pa1.x - pa0.x + pb0.x - pb1.x, pa1.y - pa0.y + pb0.y - pb1.y};
+    const double tl = sqrt(t.x * t.x + t.y * t.y);
+    t = {t.x / tl, t.y / tl};
+    const Vec2 n{t.y, -t.x};
+    tangent[j] = t;
+    const double xi[kJointPoints] = {0.0, 0.5, 1.0};
+    JointPointValues& separation = state.separation[j];
+    BLAST_UNROLL
+    for (int q = 0; q < kJointPoints; ++q) {
+      const Vec2 xa{pa0.x + xi[q] * (pa1.x - pa0.x), pa0.y + xi[q] * (pa1.y - pa0.y)};
+      const Vec2 xb{pb1.x + xi[q] * (pb0.x - pb1.x), pb1.y + xi[q] * (pb0.y - pb1.y)};
+      const Vec2 d{xb.x - xa.x, xb.y - xa.y};
+      double o = d.x * n.x + d.y * n.y, s = d.x * t.x + d.y * t.y;
+      if (preloaded) o += pre.opening, s += pre.slip;
+      separation.normal[q] = o;
+      separation.shear[q] = s;
+    }
+  }
+};
+
+//! Cohesive joints (Munjiza 2004, ch. 7; docs/fdem-solver.md), after JointGeometryKernel: the joint law with
+//! irreversible damage at the edge's two ends and middle (weights 1/6, 2/3, 1/6 of the initial length), and the
 //! forces on the four nodes, written into the two edge slots the joint joins. A joint is broken once two of
 //! its three points reach damage 1; its faces then become exposed edges and carry no cohesion.
 struct JointForceKernel {
-  NodeMotion<Access::read> nodes;
   JointParams params;
   JointState<Access::read_write> state;
   EdgeState<Access::read_write> edges;  //!< writes joint_force, and exposed when the joint breaks
+  const Vec2* tangent;                  //!< per joint: t of this substep (JointGeometryKernel)
   BLAST_HD void operator()(index_t ji) const {
     const int j = static_cast<int>(ji);
     const JointNodes jn = params.nodes[j];
-    const int a0 = jn.a0, a1 = jn.a1, b0 = jn.b0, b1 = jn.b1;
+    const int a0 = jn.a0, b0 = jn.b0;
     SlotForce& fa = edges.joint_force[a0];  // slot of face A: its first node is a0, its second a1
     SlotForce& fb = edges.joint_force[b0];  // slot of face B: b0, then b1
     if (state.broken[j]) {
@@ -197,16 +238,7 @@ struct JointForceKernel {
     }
     const JointStrength strength = params.strength[j];
     const double length0 = params.length[j];
-    // In-situ stress: the joint starts at the opening and slip whose tractions carry it (joint_preload()). No
-    // addition without one, so a joint without in-situ stress keeps the same bits (signed zeros included).
-    const JointPreload pre = params.preload[j];
-    const bool preloaded = pre.opening != 0.0 || pre.slip != 0.0;
-    const Vec2 pa0 = nodes.position(a0), pa1 = nodes.position(a1);
-    const Vec2 pb0 = nodes.position(b0), pb1 = nodes.position(b1);
-    // Mean direction of the two faces (both run a0 -> a1), and the normal pointing out of face A.
-    Vec2 t{pa1.x - pa0.x + pb0.x - pb1.x, pa1.y - pa0.y + pb0.y - pb1.y};
-    const double tl = sqrt(t.x * t.x + t.y * t.y);
-    t = {t.x / tl, t.y / tl};
+    const Vec2 t = tangent[j];
     const Vec2 n{t.y, -t.x};
     const double xi[kJointPoints] = {0.0, 0.5, 1.0};
     const double w[kJointPoints] = {length0 / 6.0, 4.0 * length0 / 6.0, length0 / 6.0};
@@ -214,22 +246,16 @@ struct JointForceKernel {
     int broken_points = 0;
     JointPointDamage& damage = state.damage[j];
     JointPointPlastic& plastic = state.plastic[j];
-    JointPointValues& separation = state.separation[j];
+    const JointPointValues& separation = state.separation[j];
     JointPointValues& traction = state.traction[j];
     BLAST_UNROLL
     for (int q = 0; q < kJointPoints; ++q) {
-      const Vec2 xa{pa0.x + xi[q] * (pa1.x - pa0.x), pa0.y + xi[q] * (pa1.y - pa0.y)};
-      const Vec2 xb{pb1.x + xi[q] * (pb0.x - pb1.x), pb1.y + xi[q] * (pb0.y - pb1.y)};
-      const Vec2 d{xb.x - xa.x, xb.y - xa.y};
-      double o = d.x * n.x + d.y * n.y, s = d.x * t.x + d.y * t.y;
-      if (preloaded) o += pre.opening, s += pre.slip;
+      const double o = separation.normal[q], s = separation.shear[q];
       const JointTraction tr =
           joint_traction(o, s, strength, JointHistory{damage.point[q], plastic.slip[q], plastic.path[q]});
       damage.point[q] = tr.damage;
       plastic.slip[q] = tr.plastic_slip;
       plastic.path[q] = tr.slip_path;
-      separation.normal[q] = o;
-      separation.shear[q] = s;
       traction.normal[q] = tr.normal;
       traction.shear[q] = tr.shear;
       if (tr.damage >= 1.0) ++broken_points;
