@@ -3,6 +3,7 @@
 //! shear strength, irreversible damage (the constitutive part of docs/validation.md F3).
 #include "blastsim/fdem/joint_kernels.hpp"
 #include "blastsim/fdem/material.hpp"
+#include "blastsim/fdem/rock_step_kernels.hpp"
 #include "catch.hpp"
 
 #include <algorithm>
@@ -205,4 +206,83 @@ TEST_CASE("F11 Shear slip is plastic: elastic under the Coulomb cap, no energy f
     }
   }
   std::printf("F11 random paths: least dissipation of a leg %.3e J/m2\n", least);
+}
+
+TEST_CASE("The joint's two passes: a turned joint's opening, slip and tangent, then the joint law on them",
+          "[fdem][joint]") {
+  // Face A runs from (0, 0) to (L, 0); face B lies opened by delta along the outward normal of A, n = (0, -1),
+  // and slid by sigma along t = (1, 0): b1 = (sigma, -delta) opposite a0, b0 = (L + sigma, -delta) opposite a1.
+  // The pair is turned by theta and moved by c. Exact: at all three points the opening is delta and the slip
+  // sigma (plus a preload where one is given), the tangent (cos theta, sin theta). Tolerance 1e-13 m: positions of
+  // about 1 m carry rounding of a few 1e-16 m. JointForceKernel must then give each point the tractions of
+  // joint_traction() at those values (the same bits), and face A the force sum_q w_q (sigma_q n + tau_q t) with
+  // weights L0/6, 4 L0/6, L0/6, face B its opposite.
+  const JointStrength strength = paper_joint();
+  const double L = 0.03, delta = 0.6 * strength.peak_opening, sigma = -0.4 * strength.peak_slip;
+  const double cx = 1.3, cy = -0.4;
+  for (const double theta : {0.0, 0.7, 2.4, -1.9}) {
+    for (const JointPreload pre : {JointPreload{0.0, 0.0}, JointPreload{0.2 * strength.peak_opening, 0.1 * strength.peak_slip}}) {
+      const double ct = std::cos(theta), st = std::sin(theta);
+      auto place = [&](double x, double y) { return Vec2{cx + ct * x - st * y, cy + st * x + ct * y}; };
+      const Vec2 p[4] = {place(0, 0), place(L, 0), place(L + sigma, -delta), place(sigma, -delta)};  // a0 a1 b0 b1
+      std::vector<double> x(4), y(4), vx(4, 0.0), vy(4, 0.0);
+      for (int k = 0; k < 4; ++k) x[k] = p[k].x, y[k] = p[k].y;
+      const JointNodes nodes{0, 1, 2, 3};
+      const double length = L;
+      JointPointDamage damage{{0, 0, 0}};
+      JointPointPlastic plastic{{0, 0, 0}, {0, 0, 0}};
+      JointPointValues separation{{-1, -1, -1}, {-1, -1, -1}}, traction{{0, 0, 0}, {0, 0, 0}};
+      std::uint8_t broken = 0;
+      Vec2 tangent{0, 0};
+      const NodeMotion<blastsim::Access::read> motion{x.data(), y.data(), vx.data(), vy.data()};
+      const JointParams params{&nodes, &strength, &length, &pre};
+      const JointState<blastsim::Access::read_write> state{&damage, &plastic, &separation, &traction, &broken};
+      JointGeometryKernel{motion, params, state, &tangent}(0);
+      CHECK(std::fabs(tangent.x - ct) <= 1e-12);
+      CHECK(std::fabs(tangent.y - st) <= 1e-12);
+      for (int q = 0; q < kJointPoints; ++q) {
+        CHECK(std::fabs(separation.normal[q] - (delta + pre.opening)) <= 1e-13);
+        CHECK(std::fabs(separation.shear[q] - (sigma + pre.slip)) <= 1e-13);
+      }
+      std::vector<SlotForce> slot(4, SlotForce{{9, 9}, {9, 9}});
+      std::vector<std::uint8_t> exposed(4, 0);
+      const EdgeState<blastsim::Access::read_write> edges{slot.data(), exposed.data()};
+      JointForceKernel{params, state, edges, &tangent}(0);
+      const Vec2 n{tangent.y, -tangent.x};
+      const double w[kJointPoints] = {length / 6.0, 4.0 * length / 6.0, length / 6.0};
+      Vec2 total{0, 0};
+      for (int q = 0; q < kJointPoints; ++q) {
+        const JointTraction tr = joint_traction(separation.normal[q], separation.shear[q], strength, JointHistory{});
+        CHECK(traction.normal[q] == tr.normal);
+        CHECK(traction.shear[q] == tr.shear);
+        CHECK(damage.point[q] == tr.damage);
+        total = {total.x + w[q] * (tr.normal * n.x + tr.shear * tangent.x), total.y + w[q] * (tr.normal * n.y + tr.shear * tangent.y)};
+      }
+      const double scale = strength.tensile_strength * L;
+      const SlotForce fa = slot[0], fb = slot[2];
+      CHECK(std::fabs(fa.first.x + fa.second.x - total.x) <= 1e-12 * scale);
+      CHECK(std::fabs(fa.first.y + fa.second.y - total.y) <= 1e-12 * scale);
+      CHECK((fb.first.x == -fa.second.x && fb.first.y == -fa.second.y));
+      CHECK((fb.second.x == -fa.first.x && fb.second.y == -fa.first.y));
+      CHECK(broken == 0);
+    }
+  }
+  // A broken joint is left alone by the geometry pass: its last opening and slip stay.
+  const JointStrength strength2 = paper_joint();
+  const JointNodes nodes{0, 1, 2, 3};
+  const double length = 0.03;
+  const JointPreload none{0.0, 0.0};
+  std::vector<double> x{0, 0.03, 0.03, 0}, y{0, 0, -1e-3, -1e-3}, v(4, 0.0);
+  JointPointDamage damage{{1, 1, 1}};
+  JointPointPlastic plastic{{0, 0, 0}, {0, 0, 0}};
+  JointPointValues separation{{7e-6, 7e-6, 7e-6}, {1e-6, 1e-6, 1e-6}}, traction{{0, 0, 0}, {0, 0, 0}};
+  std::uint8_t broken = 1;
+  Vec2 tangent{0.25, 0.5};
+  JointGeometryKernel{NodeMotion<blastsim::Access::read>{x.data(), y.data(), v.data(), v.data()},
+                      JointParams{&nodes, &strength2, &length, &none},
+                      JointState<blastsim::Access::read_write>{&damage, &plastic, &separation, &traction, &broken},
+                      &tangent}(0);
+  CHECK(separation.normal[1] == 7e-6);
+  CHECK(separation.shear[2] == 1e-6);
+  CHECK((tangent.x == 0.25 && tangent.y == 0.5));
 }
