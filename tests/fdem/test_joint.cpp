@@ -220,6 +220,8 @@ TEST_CASE("The joint's two passes: a turned joint's opening, slip and tangent, t
   const JointStrength strength = paper_joint();
   const double L = 0.03, delta = 0.6 * strength.peak_opening, sigma = -0.4 * strength.peak_slip;
   const double cx = 1.3, cy = -0.4;
+  const JointNodes nodes{0, 1, 2, 3};  // a0 a1 b0 b1
+  const double length = L;
   for (const double theta : {0.0, 0.7, 2.4, -1.9}) {
     for (const JointPreload pre : {JointPreload{0.0, 0.0}, JointPreload{0.2 * strength.peak_opening, 0.1 * strength.peak_slip}}) {
       const double ct = std::cos(theta), st = std::sin(theta);
@@ -227,8 +229,6 @@ TEST_CASE("The joint's two passes: a turned joint's opening, slip and tangent, t
       const Vec2 p[4] = {place(0, 0), place(L, 0), place(L + sigma, -delta), place(sigma, -delta)};  // a0 a1 b0 b1
       std::vector<double> x(4), y(4), vx(4, 0.0), vy(4, 0.0);
       for (int k = 0; k < 4; ++k) x[k] = p[k].x, y[k] = p[k].y;
-      const JointNodes nodes{0, 1, 2, 3};
-      const double length = L;
       JointPointDamage damage{{0, 0, 0}};
       JointPointPlastic plastic{{0, 0, 0}, {0, 0, 0}};
       JointPointValues separation{{-1, -1, -1}, {-1, -1, -1}}, traction{{0, 0, 0}, {0, 0, 0}};
@@ -268,18 +268,15 @@ TEST_CASE("The joint's two passes: a turned joint's opening, slip and tangent, t
     }
   }
   // A broken joint is left alone by the geometry pass: its last opening and slip stay.
-  const JointStrength strength2 = paper_joint();
-  const JointNodes nodes{0, 1, 2, 3};
-  const double length = 0.03;
   const JointPreload none{0.0, 0.0};
-  std::vector<double> x{0, 0.03, 0.03, 0}, y{0, 0, -1e-3, -1e-3}, v(4, 0.0);
+  std::vector<double> x{0, L, L, 0}, y{0, 0, -1e-3, -1e-3}, v(4, 0.0);
   JointPointDamage damage{{1, 1, 1}};
   JointPointPlastic plastic{{0, 0, 0}, {0, 0, 0}};
   JointPointValues separation{{7e-6, 7e-6, 7e-6}, {1e-6, 1e-6, 1e-6}}, traction{{0, 0, 0}, {0, 0, 0}};
   std::uint8_t broken = 1;
   Vec2 tangent{0.25, 0.5};
   JointGeometryKernel{NodeMotion<blastsim::Access::read>{x.data(), y.data(), v.data(), v.data()},
-                      JointParams{&nodes, &strength2, &length, &none},
+                      JointParams{&nodes, &strength, &length, &none},
                       JointState<blastsim::Access::read_write>{&damage, &plastic, &separation, &traction, &broken},
                       &tangent}(0);
   CHECK(separation.normal[1] == 7e-6);
