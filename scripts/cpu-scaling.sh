@@ -26,7 +26,7 @@ report=$out/cpu-scaling.md
 log=$out/cpu-scaling.log
 : > "$log"
 
-build=build-cpu-scaling
+build="build-cpu-scaling"
 prefix=()
 [ -d .deps/usr ] && prefix=(-DCMAKE_PREFIX_PATH="$PWD/.deps/usr")
 t0=$(date +%s)
@@ -65,11 +65,12 @@ run() {
 
 # keep ARRAY KEY VALUE: the smaller of the value kept and VALUE (the best of the repeats).
 keep() {
-  local -n table=$1
+  local -n kept=$1
   [ -z "$3" ] && return
-  local old=${table[$2]:-}
-  if [ -z "$old" ] || awk -v a="$3" -v b="$old" 'BEGIN { exit !(a < b) }'; then table[$2]=$3; fi
+  local old=${kept[$2]:-}
+  if [ -z "$old" ] || awk -v a="$3" -v b="$old" 'BEGIN { exit !(a < b) }'; then kept[$2]=$3; fi
 }
+# shellcheck disable=SC2034  # read through the namerefs of keep() and row()
 declare -A coupled gas
 for t in "${threads[@]}"; do
   for ((r = 1; r <= repeats; ++r)); do
@@ -89,10 +90,10 @@ for t in "${threads[@]}"; do
 done
 rm -f "$out/run.txt"
 
-# row LABEL ARRAY KEY: wall time, speed-up and efficiency against one thread.
+# row THREADS ARRAY KEY: wall time, speed-up and efficiency against one thread.
 row() {
-  local -n table=$2
-  local t=$1 key=$3 base=${table[1,$3]:-} v=${table[$1,$3]:-}
+  local -n times=$2
+  local t=$1 base=${times[1,$3]:-} v=${times[$1,$3]:-}
   if [ -z "$v" ]; then
     echo "| $t | (not run) | | |"
   elif [ -z "$base" ]; then
