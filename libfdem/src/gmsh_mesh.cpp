@@ -151,7 +151,9 @@ void require_size(double h, const char* what) {
     throw InputError(std::string(what) + ": element size h = " + std::to_string(h) + " m must be > 0");
 }
 
-//! Names the boundary curves of the surfaces in the model by `classify(bounding box)` and meshes.
+//! Names the boundary curves of the surfaces in the model by `classify(x, y)` of a point on each (the middle of
+//! its parameter range) and meshes. A point, not the curve's extent: an embedded line that ends on a boundary
+//! circle or side splits it into pieces, and every piece lies on the one curve it was cut from, however short.
 template <class Classify>
 NamedMesh mesh_shape(double h, GmshOptions options, Classify classify, const std::string& source) {
   gmsh::model::occ::synchronize();
@@ -160,9 +162,10 @@ NamedMesh mesh_shape(double h, GmshOptions options, Classify classify, const std
   gmsh::model::getBoundary(surfaces, curves, true, false, false);
   std::map<std::string, std::vector<int>> named;
   for (const auto& [dim, tag] : curves) {
-    double x0, y0, z0, x1, y1, z1;
-    gmsh::model::getBoundingBox(dim, std::abs(tag), x0, y0, z0, x1, y1, z1);
-    named[classify(x0, y0, x1, y1)].push_back(std::abs(tag));
+    std::vector<double> lo, hi, point;
+    gmsh::model::getParametrizationBounds(dim, std::abs(tag), lo, hi);
+    gmsh::model::getValue(dim, std::abs(tag), {0.5 * (lo.at(0) + hi.at(0))}, point);
+    named[classify(point.at(0), point.at(1))].push_back(std::abs(tag));
   }
   for (const auto& [name, tags] : named) {
     const int g = gmsh::model::addPhysicalGroup(1, tags);
@@ -185,13 +188,13 @@ NamedMesh mesh_shape(double h, GmshOptions options, Classify classify, const std
   return extract_model(source);
 }
 
-//! Classifies a curve of a rectangle [x0, x1] x [y0, y1] by its bounding box (else "hole").
-std::string rectangle_side(double bx0, double by0, double bx1, double by1, double x0, double y0, double x1, double y1) {
-  const double tol = 1e-5 * std::max(x1 - x0, y1 - y0);  // OpenCASCADE pads bounding boxes by ~1e-7
-  if (std::fabs(bx0 - x0) < tol && std::fabs(bx1 - x0) < tol) return "left";
-  if (std::fabs(bx0 - x1) < tol && std::fabs(bx1 - x1) < tol) return "right";
-  if (std::fabs(by0 - y0) < tol && std::fabs(by1 - y0) < tol) return "bottom";
-  if (std::fabs(by0 - y1) < tol && std::fabs(by1 - y1) < tol) return "top";
+//! Names the side of a rectangle [x0, x1] x [y0, y1] that the boundary point (x, y) lies on (else "hole").
+std::string rectangle_side(double x, double y, double x0, double y0, double x1, double y1) {
+  const double tol = 1e-5 * std::max(x1 - x0, y1 - y0);
+  if (std::fabs(x - x0) < tol) return "left";
+  if (std::fabs(x - x1) < tol) return "right";
+  if (std::fabs(y - y0) < tol) return "bottom";
+  if (std::fabs(y - y1) < tol) return "top";
   return "hole";
 }
 
@@ -230,8 +233,7 @@ NamedMesh gmsh_rectangle(double x0, double y0, double x1, double y1, double h, c
   if (!(x1 > x0) || !(y1 > y0)) throw InputError("rectangle mesh: need x1 > x0 and y1 > y0");
   return guarded("rectangle mesh", [&] {
     embed_segments({{2, gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0)}}, embedded);
-    return mesh_shape(h, options,
-                      [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
+    return mesh_shape(h, options, [&](double x, double y) { return rectangle_side(x, y, x0, y0, x1, y1); },
                       "rectangle mesh");
   });
 }
@@ -242,7 +244,7 @@ NamedMesh gmsh_disc(double cx, double cy, double r, double h, const std::vector<
   if (!(r > 0)) throw InputError("disc mesh: radius " + std::to_string(r) + " m must be > 0");
   return guarded("disc mesh", [&] {
     embed_segments({{2, gmsh::model::occ::addDisk(cx, cy, 0, r, r)}}, embedded);
-    return mesh_shape(h, options, [](double, double, double, double) { return std::string("outer"); }, "disc mesh");
+    return mesh_shape(h, options, [](double, double) { return std::string("outer"); }, "disc mesh");
   });
 }
 
@@ -259,8 +261,8 @@ NamedMesh gmsh_disc_with_hole(double cx, double cy, double r, double r_hole, dou
     std::vector<gmsh::vectorpair> map;
     gmsh::model::occ::cut({{2, outer}}, {{2, hole}}, out, map);
     embed_segments(out, embedded);
-    return mesh_shape(h, options, [&](double a, double, double c, double) {
-      return 0.5 * (c - a) > 0.5 * (r + r_hole) ? std::string("outer") : std::string("hole");
+    return mesh_shape(h, options, [&](double x, double y) {
+      return std::hypot(x - cx, y - cy) > 0.5 * (r + r_hole) ? std::string("outer") : std::string("hole");
     }, "disc-with-hole mesh");
   });
 }
@@ -277,15 +279,14 @@ NamedMesh gmsh_rectangle_with_hole(double x0, double y0, double x1, double y1, d
     gmsh::vectorpair out;
     std::vector<gmsh::vectorpair> map;
     gmsh::model::occ::cut({{2, rect}}, {{2, hole}}, out, map);
-    return mesh_shape(h, options,
-                      [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
+    return mesh_shape(h, options, [&](double x, double y) { return rectangle_side(x, y, x0, y0, x1, y1); },
                       "rectangle-with-hole mesh");
   });
 }
 
 namespace {
-//! Cuts `holes` out of the surface `outer`, embeds `embedded` and meshes; curves named by `outer_name`
-//! (a bounding-box classifier) unless they are the rim of hole k, named "hole<k>".
+//! Cuts `holes` out of the surface `outer`, embeds `embedded` and meshes; curves named by `outer_name` (of a point
+//! on the curve) unless they lie on the rim of hole k, named "hole<k>".
 template <class OuterName>
 NamedMesh mesh_with_holes(int outer, const std::vector<Circle>& holes, double h, const std::vector<Segment>& embedded,
                           GmshOptions options, OuterName outer_name, const std::string& what) {
@@ -294,14 +295,12 @@ NamedMesh mesh_with_holes(int outer, const std::vector<Circle>& holes, double h,
   std::vector<gmsh::vectorpair> map;
   gmsh::model::occ::cut({{2, outer}}, tools, out, map);
   embed_segments(out, embedded);
-  return mesh_shape(h, options, [&](double a, double b, double c, double d) {
-    for (std::size_t k = 0; k < holes.size(); ++k) {
-      const double tol = 1e-3 * holes[k].radius + 1e-9;
-      if (std::fabs(0.5 * (a + c) - holes[k].center[0]) < tol && std::fabs(0.5 * (b + d) - holes[k].center[1]) < tol &&
-          std::fabs(0.5 * (c - a) - holes[k].radius) < 1e-2 * holes[k].radius)
+  return mesh_shape(h, options, [&](double x, double y) {
+    for (std::size_t k = 0; k < holes.size(); ++k)  // holes lie half an element apart: a rim point is one hole's
+      if (std::fabs(std::hypot(x - holes[k].center[0], y - holes[k].center[1]) - holes[k].radius) <
+          1e-3 * holes[k].radius + 1e-9)
         return "hole" + std::to_string(k);
-    }
-    return outer_name(a, b, c, d);
+    return outer_name(x, y);
   }, what);
 }
 }  // namespace
@@ -322,8 +321,7 @@ NamedMesh gmsh_rectangle_with_holes(double x0, double y0, double x1, double y1, 
   }
   return guarded(what, [&] {
     return mesh_with_holes(gmsh::model::occ::addRectangle(x0, y0, 0, x1 - x0, y1 - y0), holes, h, embedded, options,
-                           [&](double a, double b, double c, double d) { return rectangle_side(a, b, c, d, x0, y0, x1, y1); },
-                           what);
+                           [&](double x, double y) { return rectangle_side(x, y, x0, y0, x1, y1); }, what);
   });
 }
 
@@ -338,7 +336,7 @@ NamedMesh gmsh_disc_with_holes(double cx, double cy, double r, const std::vector
       throw InputError(what + ": hole " + std::to_string(k) + " does not lie inside the disc with half an element to spare");
   return guarded(what, [&] {
     return mesh_with_holes(gmsh::model::occ::addDisk(cx, cy, 0, r, r), holes, h, embedded, options,
-                           [](double, double, double, double) { return std::string("outer"); }, what);
+                           [](double, double) { return std::string("outer"); }, what);
   });
 }
 

@@ -5,6 +5,7 @@
 #include "catch.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <map>
@@ -247,6 +248,69 @@ TEST_CASE("Gmsh rectangle and disc with several holes: areas, one group per hole
   }
   CHECK_THAT(group_length(r, "top"), WithinRel(0.24, 1e-12));
   CHECK_THAT(group_length(d, "outer"), WithinRel(2 * M_PI * 0.11, 0.01));
+}
+
+namespace {
+//! Checks that every edge of group `name` is a chord of the circle (c, r) (both ends on it to 1e-9 r) and that the
+//! chords go once around it (their angles add up to 2 pi to 1e-9): the group is that whole circle and nothing else.
+void check_group_is_circle(const NamedMesh& m, const std::string& name, const std::array<double, 2>& c, double r) {
+  INFO("group " << name);
+  REQUIRE(m.boundary_groups.count(name) == 1);
+  double angle = 0;
+  for (const auto& e : m.boundary_groups.at(name)) {
+    const auto& p = m.mesh.vertices[e[0]];
+    const auto& q = m.mesh.vertices[e[1]];
+    CHECK(std::fabs(std::hypot(p[0] - c[0], p[1] - c[1]) - r) < 1e-9 * r);
+    CHECK(std::fabs(std::hypot(q[0] - c[0], q[1] - c[1]) - r) < 1e-9 * r);
+    angle += 2 * std::asin(std::min(1.0, 0.5 * std::hypot(q[0] - p[0], q[1] - p[1]) / r));
+  }
+  CHECK_THAT(angle, WithinAbs(2 * M_PI, 1e-9));
+}
+//! Every boundary edge of the mesh's topology is in exactly one named group.
+void check_every_edge_grouped(const NamedMesh& m) {
+  const FdemTopology topo = build_topology(m.mesh);
+  size_t grouped = 0;
+  for (const auto& [name, edges] : m.boundary_groups) grouped += boundary_slots(topo, edges, name).size();
+  CHECK(grouped == topo.boundary_edges.size());
+}
+}  // namespace
+
+TEST_CASE("Gmsh boundary groups stay whole when embedded lines end on the circles and sides they split",
+          "[fdem][mesh][gmsh][groups]") {
+  // A line that ends on a boundary curve splits it into pieces; each piece keeps the name of the curve it lies on
+  // (an outer arc is never "hole", a hole's arc never the outline's).
+  const double R = 0.1, r = 0.02, h = 0.01;
+  const std::vector<Segment> radial{{{0.0, r}, {0.0, R}}};                           // hole rim to outer circle
+  const std::vector<Segment> chords{{{-R, 0.05}, {R, 0.05}}, {{0.05, -R}, {0.05, R}}};  // outer circle to outer circle
+  for (const std::vector<Segment>* lines : {&radial, &chords}) {
+    std::vector<Segment> ends = *lines;  // chords: their ends on the circle
+    for (Segment& g : ends)
+      for (auto* p : {&g.a, &g.b}) {
+        const double k = std::hypot((*p)[0], (*p)[1]);
+        if (k > 0.5 * (R + r)) *p = {(*p)[0] * R / k, (*p)[1] * R / k};
+      }
+    const NamedMesh m = gmsh_disc_with_hole(0.0, 0.0, R, r, h, ends);
+    CHECK(m.boundary_groups.size() == 2);
+    check_group_is_circle(m, "outer", {0.0, 0.0}, R);
+    check_group_is_circle(m, "hole", {0.0, 0.0}, r);
+    check_every_edge_grouped(m);
+  }
+  // Several holes: a line through hole 0 and one from hole 1 to the outline keep hole0 and hole1 whole.
+  const std::vector<Circle> holes{{{0.05, 0.06}, 0.01}, {{0.15, 0.06}, 0.015}};
+  const std::vector<Segment> cut{{{0.0, 0.06}, {0.04, 0.06}}, {{0.06, 0.06}, {0.135, 0.06}}, {{0.15, 0.075}, {0.15, 0.12}}};
+  const NamedMesh rect = gmsh_rectangle_with_holes(0.0, 0.0, 0.24, 0.12, holes, 0.005, cut);
+  check_group_is_circle(rect, "hole0", holes[0].center, holes[0].radius);
+  check_group_is_circle(rect, "hole1", holes[1].center, holes[1].radius);
+  CHECK_THAT(group_length(rect, "left"), WithinRel(0.12, 1e-12));
+  CHECK_THAT(group_length(rect, "top"), WithinRel(0.24, 1e-12));
+  CHECK(rect.boundary_groups.count("hole") == 0);
+  check_every_edge_grouped(rect);
+  const std::vector<Segment> to_rim{{{0.06, 0.06}, {0.135, 0.06}}, {{0.15, 0.075}, {0.15, 0.06 + std::sqrt(0.0121 - 0.0009)}}};
+  const NamedMesh disc = gmsh_disc_with_holes(0.12, 0.06, 0.11, holes, 0.005, to_rim);
+  check_group_is_circle(disc, "hole0", holes[0].center, holes[0].radius);
+  check_group_is_circle(disc, "hole1", holes[1].center, holes[1].radius);
+  check_group_is_circle(disc, "outer", {0.12, 0.06}, 0.11);
+  check_every_edge_grouped(disc);
 }
 
 TEST_CASE(".msh file: triangles and a named boundary group are read", "[fdem][mesh][gmsh]") {
