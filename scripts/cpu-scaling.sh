@@ -12,11 +12,19 @@ cd "$(dirname "$0")/.." || exit 1
 max=${1:-$(nproc)}
 budget=${2:-540}
 repeats=${REPEATS:-2}
-case "$max$budget$repeats" in
-  "" | *[!0-9]*) echo "usage: [REPEATS=N] scripts/cpu-scaling.sh [MAX_THREADS [SECONDS]] (whole numbers)" >&2; exit 2 ;;
-esac
-if [ "$max" -lt 1 ] || [ "$budget" -lt 60 ] || [ "$repeats" -lt 1 ]; then
-  echo "cpu-scaling: MAX_THREADS $max and REPEATS $repeats must be >= 1, SECONDS $budget >= 60" >&2
+# Whole numbers of at most 6 digits (so that the shell's arithmetic cannot overflow), then their ranges: the
+# thread counts double up to MAX_THREADS, and every run of the REPEATS must fit the SECONDS.
+for value in "$max" "$budget" "$repeats"; do
+  case "$value" in
+    "" | *[!0-9]* | ???????*)
+      echo "usage: [REPEATS=N] scripts/cpu-scaling.sh [MAX_THREADS [SECONDS]] (whole numbers; got '$value')" >&2
+      exit 2 ;;
+  esac
+done
+max=$((10#$max)) budget=$((10#$budget)) repeats=$((10#$repeats))
+if [ "$max" -lt 1 ] || [ "$max" -gt 1024 ] || [ "$repeats" -lt 1 ] || [ "$repeats" -gt 20 ] ||
+   [ "$budget" -lt 60 ] || [ "$budget" -gt 86400 ]; then
+  echo "cpu-scaling: MAX_THREADS $max must be in 1..1024, REPEATS $repeats in 1..20, SECONDS $budget in 60..86400" >&2
   exit 2
 fi
 deadline=$(($(date +%s) + budget))

@@ -80,7 +80,10 @@ def end_time(case, overrides):
     """time.end of the run: from the overrides, else from the case file; None when it cannot be read."""
     for o in overrides:
         if o.startswith("time.end="):
-            return float(o.split("=", 1)[1])
+            try:
+                return float(o.split("=", 1)[1])
+            except ValueError:
+                return None
     try:
         import tomllib  # Python >= 3.11
 
@@ -102,10 +105,41 @@ def complete(folder, end):
     return end is None or (m is not None and float(m.group(1)) >= 0.999 * end)
 
 
-def run_all(args, out):
+def seed_command(args, blastsim, k, folder):
+    """The driver's command line of realisation k, its output into folder."""
+    command = [str(blastsim), "-q", args.case, f"rock.mesh.jitter={args.jitter}", f"rock.mesh.seed={k}",
+               f"output.directory={folder.resolve()}", *args.overrides]
+    if args.remesh:
+        command.append(f"rock.mesh.realisation={k}")
+    if args.rotate:
+        command.append(f"rock.mesh.rotation={rotation_deg(k)}")
+    if args.strength_seed:
+        command.append(f"rock.heterogeneity.seed={k}")
+    return command
+
+
+def check_arguments(args, parser, out):
+    """Everything that can be checked before a run: the files named, the output folder, and the case with every
+    override, which the driver reads and validates (--check) as realisation 1 would; exits 2 with a message."""
+    if not Path(args.case).is_file():
+        parser.error(f"the case file {args.case} does not exist or is not a file")
+    if out.exists() and not out.is_dir():
+        parser.error(f"--out {out}: exists and is not a folder")
+    if args.collect_only:
+        return None
     blastsim = Path(args.blastsim) if args.blastsim else REPO / "build-cpu/apps/blastsim/blastsim"
-    if not blastsim.exists():
-        sys.exit(f"realisations: no blastsim at {blastsim} (build it, or pass --blastsim)")
+    if not blastsim.is_file() or not os.access(blastsim, os.X_OK):
+        parser.error(f"no blastsim program at {blastsim} (build it with scripts/run-tests.sh, or pass --blastsim)")
+    command = seed_command(args, blastsim, 1, out / "seed_1")
+    command.insert(1, "--check")
+    checked = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if checked.returncode != 0:
+        parser.error(f"blastsim refuses the case as realisation 1 would run it (exit {checked.returncode}):\n"
+                     f"{checked.stderr.strip()}")
+    return blastsim
+
+
+def run_all(args, out, blastsim):
     end = end_time(args.case, args.overrides)
     env = dict(os.environ)
     if args.jobs > 1 and "OMP_NUM_THREADS" not in env:  # the cores shared among the runs at once
@@ -117,15 +151,7 @@ def run_all(args, out):
             print(f"[{k}/{args.n}] seed {k}: complete run in {folder}, skipped", flush=True)
             continue
         folder.mkdir(parents=True, exist_ok=True)
-        command = [str(blastsim), "-q", args.case, f"rock.mesh.jitter={args.jitter}", f"rock.mesh.seed={k}",
-                   f"output.directory={folder.resolve()}", *args.overrides]
-        if args.remesh:
-            command.append(f"rock.mesh.realisation={k}")
-        if args.rotate:
-            command.append(f"rock.mesh.rotation={rotation_deg(k)}")
-        if args.strength_seed:
-            command.append(f"rock.heterogeneity.seed={k}")
-        todo.append((k, folder, command))
+        todo.append((k, folder, seed_command(args, blastsim, k, folder)))
     lock = threading.Lock()
 
     def run_one(item):
@@ -207,7 +233,8 @@ def statistics_line(label, values, runs):
 def write_tables(args, out, failed):
     seeds = [k for k in range(1, args.n + 1) if (out / f"seed_{k}").is_dir()]
     if not seeds:
-        sys.exit(f"realisations: no seed_K folders (K = 1..{args.n}) in {out}")
+        print(f"realisations: no seed_K folders (K = 1..{args.n}) in {out}", file=sys.stderr)
+        sys.exit(2)
     rows = {k: collect(out / f"seed_{k}") for k in seeds}
     columns = [q[0] for q in QUANTITIES] + [EJECTION[0]] + [b[0] for b in BLAST]
     with open(out / "realisations.csv", "w", newline="") as f:
@@ -259,15 +286,16 @@ def main():
     args = p.parse_intermixed_args()
     if args.jitter is None:
         args.jitter = 0.0 if args.remesh else 0.03
-    if args.n < 1:
-        p.error("N must be at least 1")
-    if args.jobs < 1:
-        p.error("--jobs must be at least 1")
+    if not 1 <= args.n <= 10000:
+        p.error(f"N = {args.n}: must be in 1..10000")
+    if not 1 <= args.jobs <= 256:
+        p.error(f"--jobs {args.jobs}: must be in 1..256")
     bad = [o for o in args.overrides if "=" not in o]
     if bad:
         p.error(f"overrides must read section.key=value: {' '.join(bad)}")
     out = Path(args.out or f"realisations_{Path(args.case).stem}")
-    failed = [] if args.collect_only else run_all(args, out)
+    blastsim = check_arguments(args, p, out)
+    failed = [] if args.collect_only else run_all(args, out, blastsim)
     write_tables(args, out, failed)
     if failed:
         sys.exit(f"realisations: seed(s) {', '.join(map(str, failed))} failed")
