@@ -282,7 +282,8 @@ class ChargeFiles {
 };
 
 //! The case as the checkpoint records it: the resolved input, less the keys a restart may change, and without
-//! the echo's "(default)" marks (a default written out is the same input). Keys added since checkpoints were
+//! the echo's "(default)" marks (a default written out is the same input), and without the lines of keys read
+//! only when given whose value is what their absence gives (EchoLine::same_as_absent). Keys added since checkpoints were
 //! first written are recorded only when their value differs from the one that gives the earlier builds' step
 //! (later_keys), so a checkpoint of an earlier build restarts when the input asks for that step, and is refused,
 //! naming the key, when it does not.
@@ -293,7 +294,7 @@ std::string checkpoint_case_text(const Case& c) {
                                                       {"rock.mesh.algorithm", "\"frontal\""}};
   const std::string mark = kDefaultMark;
   for (const EchoLine& line : c.echo) {
-    if (may_change.count(line.key)) continue;
+    if (may_change.count(line.key) || line.same_as_absent) continue;
     const bool marked = line.text.size() >= mark.size() && line.text.compare(line.text.size() - mark.size(), mark.size(), mark) == 0;
     const std::string written = marked ? line.text.substr(0, line.text.size() - mark.size()) : line.text;
     if (const auto k = later_keys.find(line.key); k != later_keys.end() && written == line.key + " = " + k->second)

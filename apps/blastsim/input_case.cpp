@@ -31,6 +31,15 @@ Case read_case(const toml::table& input) {
     }
   }
   if (c.kind == CaseKind::rock) {
+    // An initial aperture is room for the crack gas (a coupled case's); the rock's faces start touching.
+    auto no_aperture = [](const std::string& label, double aperture) {
+      if (aperture > 0)
+        throw InputError(fmt::format("{}.initial_aperture = {:g} m: room for the gas in the crack, and a rock-only case "
+                                     "has no gas (the faces start touching); remove the key, or give the case a gas "
+                                     "and [crack_gas] enabled = true", label, aperture));
+    };
+    for (const fdem::PreCutCrack& cut : c.rock.model.cracks) no_aperture(cut.label, cut.initial_aperture);
+    for (const fdem::JointSetSpec& set : c.rock.model.joint_sets) no_aperture(set.label, set.initial_aperture);
     std::vector<std::string> labels;
     for (std::size_t k = 0; k < c.rock.model.mesh.holes.size(); ++k) labels.push_back(fmt::format("rock.mesh.hole.{}", k));
     if (c.rock.model.mesh.has_holes() && labels.empty())

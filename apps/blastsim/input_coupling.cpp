@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace blastsim::app {
 
 void read_coupling(TableReader& root, Case& c) {
@@ -22,18 +24,24 @@ void read_coupling(TableReader& root, Case& c) {
   o.friction_factor = crack.optional_number("friction_factor", "", Range::non_negative());
   o.roughness = crack.optional_number("roughness", "m", Range::positive());
   o.viscosity = crack.number("viscosity", "Pa s", Range::non_negative(), o.viscosity);
-  o.courant = crack.number("courant", "", Range::half_open(0, 1), o.courant);
+  o.courant = crack.number("courant", "", Range{ibm::CrackGasOptions::kMinCourant, 1.0, false, false}, o.courant);
   o.second_order = crack.boolean("second_order", o.second_order);
   o.handover_width = crack.number("handover_width", "cells", Range{1.0, 1e6, false, false}, o.handover_width);
   crack.finish();
-  for (const fdem::PreCutCrack& cut : c.rock.model.cracks)
-    if (cut.initial_aperture > 0 && !k.crack_gas)
+  // An initial aperture is the crack gas's room; the rock's faces touch, so the grid has no gap there, and an
+  // aperture as wide as the hand-over gap (where a crack's gas becomes the grid's) would need one.
+  const double cell = std::max(c.gas.grid.dx, c.gas.grid.dy), widest = o.handover_width * cell;
+  auto check_aperture = [&](const std::string& label, double aperture) {
+    if (aperture > 0 && !k.crack_gas)
       throw InputError(fmt::format("{}.initial_aperture = {:g} m: an initial aperture is the crack gas's (give "
-                                   "[crack_gas] enabled = true, or leave it 0)", cut.label, cut.initial_aperture));
-  for (const fdem::JointSetSpec& set : c.rock.model.joint_sets)
-    if (set.initial_aperture > 0 && !k.crack_gas)
-      throw InputError(fmt::format("{}.initial_aperture = {:g} m: an initial aperture is the crack gas's (give "
-                                   "[crack_gas] enabled = true, or leave it 0)", set.label, set.initial_aperture));
+                                   "[crack_gas] enabled = true, or leave it 0)", label, aperture));
+    if (!(aperture < widest))
+      throw InputError(fmt::format("{}.initial_aperture = {:g} m: must be below crack_gas.handover_width x the gas "
+                                   "cell ({:g} x {:g} = {:g} m): a crack that open is the grid's gas, and the grid has "
+                                   "no gap where the rock's faces touch", label, aperture, o.handover_width, cell, widest));
+  };
+  for (const fdem::PreCutCrack& cut : c.rock.model.cracks) check_aperture(cut.label, cut.initial_aperture);
+  for (const fdem::JointSetSpec& set : c.rock.model.joint_sets) check_aperture(set.label, set.initial_aperture);
 }
 
 }  // namespace blastsim::app

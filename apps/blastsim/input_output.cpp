@@ -16,6 +16,7 @@ void read_output(TableReader& root, Case& c) {
   o.interval = out.number("interval", "s", Range::non_negative(), 0.0);
   if (out.has("times")) {
     o.times = out.number_list("times", "s", Range::positive());
+    out.same_as_absent("times", o.times.empty());
     for (size_t k = 1; k < o.times.size(); ++k)
       if (!(o.times[k] > o.times[k - 1]))
         throw InputError(fmt::format("output.times: {} s follows {} s: the times must be given in ascending order",

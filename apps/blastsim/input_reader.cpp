@@ -62,6 +62,15 @@ const toml::node* TableReader::find(const std::string& key) {
 
 bool TableReader::has(const std::string& key) const { return table_->get(key) != nullptr; }
 
+void TableReader::same_as_absent(const std::string& key, bool same) {
+  const std::string full = key_path(key);
+  for (auto line = echo_->rbegin(); line != echo_->rend(); ++line)
+    if (line->key == full) {
+      line->same_as_absent = same;
+      return;
+    }
+}
+
 const toml::node* TableReader::lookup(const std::string& key, bool has_fallback, const std::string& what) {
   const toml::node* n = find(key);
   if (!n && !has_fallback) missing(key, what);

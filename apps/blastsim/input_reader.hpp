@@ -33,6 +33,9 @@ inline constexpr const char* kDefaultMark = "   (default)";
 struct EchoLine {
   std::string key;
   std::string text;
+  //! The value is the one that leaving the key out gives (a key echoed only when given): the checkpoint's case
+  //! leaves the line out, so a default written out restarts the same checkpoint (TableReader::same_as_absent()).
+  bool same_as_absent = false;
 };
 
 //! Reads one TOML table. Every getter records the key as known; finish() rejects the keys nobody asked
@@ -57,6 +60,10 @@ class TableReader {
   //! An array of strings (may be empty), each a name the caller checks.
   std::vector<std::string> text_list(const std::string& key);
   bool has(const std::string& key) const;
+  //! For a key read only when the input gives it: marks its echo line (the last one of `key`) as the input that
+  //! leaving the key out gives when `same` is true (e.g. rotation = 0), so that writing a default out is the same
+  //! case to a restart.
+  void same_as_absent(const std::string& key, bool same);
   //! Sub-table (empty when absent and not required).
   TableReader table(const std::string& key, bool required = false);
   //! Array of tables (zero or more entries; an empty array `[]` is none).

@@ -42,7 +42,10 @@ fdem::MeshSpec read_mesh(TableReader& t) {
   s.jitter = t.number("jitter", "", Range{0.0, 0.25, false, false}, 0.0);
   s.seed = t.integer("seed", "", 0, 1);
   // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
-  if (t.has("rotation")) s.rotation = t.number("rotation", "deg", Range{-360.0, 360.0, false, false}) * M_PI / 180;
+  if (t.has("rotation")) {
+    s.rotation = t.number("rotation", "deg", Range{-360.0, 360.0, false, false}) * M_PI / 180;
+    t.same_as_absent("rotation", s.rotation == 0);
+  }
   if (s.shape == MeshShape::file) {
     if (t.has("realisation"))
       throw InputError(t.key_path("realisation") + ": picks one of Gmsh's meshes of a built shape; a mesh file is "
@@ -63,14 +66,20 @@ fdem::MeshSpec read_mesh(TableReader& t) {
     throw InputError(t.key_path("realisation") + ": picks one of Gmsh's meshes; only with mesher = \"gmsh\" (the ring "
                      "mesher has one mesh per size: use jitter and seed there)");
   // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
-  if (t.has("realisation"))
+  if (t.has("realisation")) {
     s.realisation = static_cast<unsigned>(t.integer("realisation", "", 0, std::nullopt, 1000000));
+    t.same_as_absent("realisation", s.realisation == 0);
+  }
   if (!s.ring_mesher)
     s.algorithm = t.text("algorithm", {"delaunay", "frontal"}, std::string("delaunay")) == "frontal"
                       ? fdem::GmshAlgorithm::frontal
                       : fdem::GmshAlgorithm::delaunay;
   // Read only when given: a case without it resolves (and checkpoints) as before the key existed.
-  if (s.ring_mesher && t.has("growth")) s.ring_growth = t.number("growth", "", Range{1.0, 2.0, false, false});
+  if (s.ring_mesher && t.has("growth")) {
+    const double absent = s.ring_growth;
+    s.ring_growth = t.number("growth", "", Range{1.0, 2.0, false, false});
+    t.same_as_absent("growth", s.ring_growth == absent);
+  }
   for (TableReader& h : t.table_array("hole")) {
     if (!s.has_holes())
       throw InputError(fmt::format("{}: holes are cut from shape = \"rectangle_with_holes\" or \"disc_with_holes\" "
@@ -144,10 +153,13 @@ void read_in_situ_stress(TableReader t, fdem::RockModelSpec& m) {
   const double rho = m.material.density;
   auto weight = [&](double g) { return g == 0 ? 0.0 : -rho * g; };  // no -0 without gravity
   s.gradient = {t.number("gradient_xx", "Pa/m", Range::any(), 0.0), weight(m.options.gravity[1]), weight(m.options.gravity[0])};
+  std::vector<std::string> viscous;  // the default: the viscous boundaries hold the stress
+  for (const fdem::ViscousBoundary& v : m.viscous_boundaries) viscous.push_back(v.boundary);
   if (t.has("boundaries")) {
     is.held_boundaries = t.text_list("boundaries");
+    t.same_as_absent("boundaries", is.held_boundaries == viscous);
   } else {
-    for (const fdem::ViscousBoundary& v : m.viscous_boundaries) is.held_boundaries.push_back(v.boundary);
+    is.held_boundaries = viscous;
     t.allow({"boundaries"});
   }
   is.equilibrate = t.boolean("equilibrate", true);
@@ -239,9 +251,10 @@ void read_rock(TableReader& root, Case& c) {
     m.joint_sets.push_back(joint);
   }
   const std::vector<std::vector<fdem::Segment>> traces = fdem::joint_sets_traces(m.joint_sets, m.mesh);
-  for (std::size_t s = 0; s < traces.size(); ++s)
-    for (std::size_t k = 0; k < traces[s].size(); ++k)
-      fdem::check_mesh_segment(m.mesh, traces[s][k], fmt::format("{} (trace {})", m.joint_sets[s].label, k));
+  if (m.mesh.shape != fdem::MeshShape::file)  // a mesh file's outline is known once read (fdem::build_rock_model)
+    for (std::size_t s = 0; s < traces.size(); ++s)
+      for (std::size_t k = 0; k < traces[s].size(); ++k)
+        fdem::check_mesh_segment(m.mesh, traces[s][k], fmt::format("{} (trace {})", m.joint_sets[s].label, k));
   if (rock.has("in_situ_stress")) read_in_situ_stress(rock.table("in_situ_stress"), m);
   if (rock.has("heterogeneity")) {
     TableReader h = rock.table("heterogeneity");
@@ -264,8 +277,10 @@ void read_rock(TableReader& root, Case& c) {
     het.tensile_strength = h.boolean("tensile_strength", true);
     het.cohesion = h.boolean("cohesion", true);
     het.fracture_energy = h.boolean("fracture_energy", true);
-    if (h.has("correlation_length"))  // read only when given: a case without it echoes as before (restart)
+    if (h.has("correlation_length")) {  // read only when given: a case without it echoes as before (restart)
       het.correlation_length = h.number("correlation_length", "m", Range::non_negative());
+      h.same_as_absent("correlation_length", het.correlation_length == 0);
+    }
     h.finish();
     if (!het.tensile_strength && !het.cohesion && !het.fracture_energy)
       throw InputError(h.path() + ": tensile_strength, cohesion and fracture_energy are all false; set one to true "

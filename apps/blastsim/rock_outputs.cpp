@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace blastsim::app {
 
@@ -33,6 +34,12 @@ fdem::RockModel make_rock_model(const Case& c, bool restart, std::ostream* log) 
   return model;
 }
 
+void check_rock_model(const Case& c, std::ostream& out) {
+  const fdem::RockModel model = make_rock_model(c, true);
+  out << fmt::format("rock model: {} triangles, {} joints, built and checked (the in-situ relaxation, if any, runs "
+                     "with the case)\n", model.solver->triangle_count(), model.solver->joint_count());
+}
+
 void check_against_mesh(const Case& c, const fdem::TriangleMesh& mesh) {
   std::array<double, 2> lo{1e308, 1e308}, hi{-1e308, -1e308};
   for (const auto& v : mesh.vertices)
@@ -47,19 +54,23 @@ void check_against_mesh(const Case& c, const fdem::TriangleMesh& mesh) {
   if (c.analysis.ring_width > extent)
     throw InputError(fmt::format("analysis.damage_ring_width = {:g} m: wider than the rock ({:g} m across, {})",
                                  c.analysis.ring_width, extent, box));
-  for (size_t k = 0; k < c.coupling.charges.size(); ++k) {  // a charge sits in a hole: no triangle holds its centre
-    const std::array<double, 2> q = c.coupling.charges[k].center;
-    for (const std::array<int, 3>& t : mesh.triangles) {
-      const auto& a = mesh.vertices[t[0]];
-      const auto& b = mesh.vertices[t[1]];
-      const auto& d = mesh.vertices[t[2]];
-      auto side = [&](const std::array<double, 2>& u, const std::array<double, 2>& v) {
-        return (v[0] - u[0]) * (q[1] - u[1]) - (v[1] - u[1]) * (q[0] - u[0]);
-      };
-      if (side(a, b) > 0 && side(b, d) > 0 && side(d, a) > 0)
-        throw InputError(fmt::format("charge.{}: no hole in the rock's mesh at its centre [{:g}, {:g}] m (a triangle of "
-                                     "the rock holds it); a charge fills a hole of the mesh", k, q[0], q[1]));
-    }
+  // A charge fills a hole of the mesh: no rock within half its hole's radius of its centre (a polygon of three or
+  // more sides inscribed in the hole's circle keeps at least that much clear), and rock within 1.5 radii around it.
+  for (size_t k = 0; k < c.coupling.charges.size(); ++k) {
+    const ibm::Charge& q = c.coupling.charges[k];
+    auto vec = [](const std::array<double, 2>& p) { return fdem::Vec2{p[0], p[1]}; };
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const std::array<int, 3>& t : mesh.triangles)
+      nearest = std::min(nearest, fdem::distance_to_triangle(vec(q.center), vec(mesh.vertices[t[0]]),
+                                                             vec(mesh.vertices[t[1]]), vec(mesh.vertices[t[2]])));
+    if (nearest < 0.5 * q.hole_radius)
+      throw InputError(fmt::format("charge.{}: no hole in the rock's mesh at its centre [{:g}, {:g}] m (rock lies {:g} m "
+                                   "from it, within half of charge.{}.hole_radius = {:g} m); a charge fills a hole of "
+                                   "the mesh", k, q.center[0], q.center[1], nearest, k, q.hole_radius));
+    if (!(nearest <= 1.5 * q.hole_radius))
+      throw InputError(fmt::format("charge.{}: no rock around its hole (centre [{:g}, {:g}] m, hole_radius {:g} m; the "
+                                   "nearest rock lies {:g} m away); a charge fills a hole of the rock's mesh", k,
+                                   q.center[0], q.center[1], q.hole_radius, nearest));
   }
 }
 

@@ -24,8 +24,13 @@ namespace blastsim::app {
 //! A restart skips the equilibration under the in-situ stress (the checkpoint holds the state it reached); `log`,
 //! when given, gets the equilibration's progress lines.
 fdem::RockModel make_rock_model(const Case& c, bool restart = false, std::ostream* log = nullptr);
+//! What --check adds for a case with rock: the rock model built and checked as the run would build it (mesh,
+//! cracks and joints along it, strengths, boundary groups, probes, charges' holes), without the in-situ
+//! relaxation; one line on `out` with its size.
+void check_rock_model(const Case& c, std::ostream& out);
 //! InputError when what the case places in the rock does not fit its mesh: an [[analysis.hole]] centre outside
-//! the mesh's bounding box, damage rings wider than the rock, a [[charge]] whose centre a triangle holds.
+//! the mesh's bounding box, damage rings wider than the rock, a [[charge]] without a hole of the mesh at its
+//! centre (rock within half its hole's radius) or without rock around that hole (none within 1.5 radii).
 void check_against_mesh(const Case& c, const fdem::TriangleMesh& mesh);
 
 //! dt [s] of the rock: the fixed time.dt (refused above the stable step, naming it; a coupled run whose rock

@@ -97,9 +97,22 @@ std::vector<JointProperties> heterogeneous_joints(const RockMaterial& material, 
   return scaled_joints(material, h, strength_factors(h, joints));
 }
 
+void check_correlation_length(const StrengthHeterogeneity& h, double joint_length) {
+  if (h.correlation_length == 0 || !(joint_length > 0)) return;
+  const double shortest = kMinCorrelationPerJoint * joint_length;
+  if (!(h.correlation_length >= shortest)) {
+    std::ostringstream os;
+    os << "rock.heterogeneity.correlation_length = " << h.correlation_length << " m: must be 0 (independent joints) "
+       << "or at least " << shortest << " m (" << kMinCorrelationPerJoint << " times the mean joint length, "
+       << joint_length << " m); a field that much shorter than a joint takes independent values at the joints: "
+       << "give 0";
+    throw InputError(os.str());
+  }
+}
+
 GaussianField::GaussianField(double correlation_length, std::uint64_t seed)
     : kx_(kModes), ky_(kModes), phase_(kModes) {
-  if (!(correlation_length > 0 && std::isfinite(correlation_length)))
+  if (!(correlation_length > 0 && std::isfinite(correlation_length) && std::isfinite(1.0 / correlation_length)))
     throw InputError("rock.heterogeneity.correlation_length = " + std::to_string(correlation_length) +
                      " m: a field needs a positive length");
   std::mt19937_64 bits(seed);

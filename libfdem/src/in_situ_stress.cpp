@@ -5,8 +5,10 @@
 
 #include "blastsim/core/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace blastsim::fdem {
 
@@ -63,6 +65,60 @@ JointPreload joint_preload(double normal, double shear, const JointStrength& j) 
   if (!(std::fabs(shear) < fs)) refuse("|tau| not below the joint's shear strength", fs);
   p.slip = shear * j.peak_slip / j.cohesion;
   return p;
+}
+
+void carry_cut_weight(const InSituStress& s, const std::vector<BoundaryEdge>& boundary_edges,
+                      const std::vector<int>& node_vertex, const std::vector<double>& x0, const std::vector<double>& y0,
+                      const std::vector<char>& held_slot, std::vector<Vec2>& load) {
+  // The boundary's closed loops: its edges joined where they share a mesh vertex (union-find on the vertices).
+  std::vector<int> root(node_vertex.empty() ? 0 : *std::max_element(node_vertex.begin(), node_vertex.end()) + 1);
+  for (std::size_t v = 0; v < root.size(); ++v) root[v] = static_cast<int>(v);
+  auto find = [&](int v) {
+    while (root[v] != v) v = root[v] = root[root[v]];
+    return v;
+  };
+  for (const BoundaryEdge& b : boundary_edges) root[find(node_vertex[b.n0])] = find(node_vertex[b.n1]);
+  std::vector<char> loop_held(root.size(), 0);
+  for (const BoundaryEdge& b : boundary_edges)
+    if (held_slot[b.n0]) loop_held[find(node_vertex[b.n0])] = 1;
+  // What the field's tractions on the loops that hold nothing (the holes cut from the rock mass) add up to, as
+  // nodal forces: with the held loads and the rock's weight they close the balance of the uncut rock mass.
+  Vec2 force{0.0, 0.0};
+  std::vector<std::pair<Vec2, Vec2>> point_forces;  // (position, force) of the holes' nodal tractions
+  for (const BoundaryEdge& b : boundary_edges) {
+    if (loop_held[find(node_vertex[b.n0])]) continue;
+    const int n0 = b.n0, n1 = b.n1;
+    const Vec2 N = edge_outward_normal({x0[n0], y0[n0]}, {x0[n1], y0[n1]});
+    const Mat2 sig = s.at(0.5 * (y0[n0] + y0[n1]));
+    const Vec2 half{0.5 * (sig.a * N.x + sig.b * N.y), 0.5 * (sig.c * N.x + sig.d * N.y)};
+    for (int n : {n0, n1}) point_forces.push_back({Vec2{x0[n], y0[n]}, half});
+    force = {force.x + 2 * half.x, force.y + 2 * half.y};
+  }
+  if (point_forces.empty()) return;
+  // The held nodes' shares w_n (half the length of each held edge at the node) and their centroid r_c.
+  std::vector<double> w(load.size(), 0.0);
+  double total = 0;
+  Vec2 rc{0.0, 0.0};
+  for (const BoundaryEdge& b : boundary_edges) {
+    if (!held_slot[b.n0]) continue;
+    const double half_length = 0.5 * std::hypot(x0[b.n1] - x0[b.n0], y0[b.n1] - y0[b.n0]);
+    for (int n : {b.n0, b.n1}) {
+      w[n] += half_length, total += half_length;
+      rc = {rc.x + half_length * x0[n], rc.y + half_length * y0[n]};
+    }
+  }
+  rc = {rc.x / total, rc.y / total};
+  double moment = 0, inertia = 0;  // about r_c: of the holes' forces, and sum w_n |r_n - r_c|^2
+  for (const auto& [r, f] : point_forces) moment += (r.x - rc.x) * f.y - (r.y - rc.y) * f.x;
+  for (std::size_t n = 0; n < w.size(); ++n)
+    if (w[n] > 0) inertia += w[n] * ((x0[n] - rc.x) * (x0[n] - rc.x) + (y0[n] - rc.y) * (y0[n] - rc.y));
+  // The held nodes take that resultant, force and moment, spread in proportion to their shares: f_n = w_n (A + B
+  // z x (r_n - r_c)) with sum f_n = force and the moment about r_c equal: A = force / sum w, B = moment / inertia.
+  const Vec2 A{force.x / total, force.y / total};
+  const double B = inertia > 0 ? moment / inertia : 0.0;
+  for (std::size_t n = 0; n < w.size(); ++n)
+    if (w[n] > 0)
+      load[n] = {load[n].x + w[n] * (A.x - B * (y0[n] - rc.y)), load[n].y + w[n] * (A.y + B * (x0[n] - rc.x))};
 }
 
 }  // namespace blastsim::fdem

@@ -17,6 +17,8 @@ namespace blastsim::fdem {
 namespace {
 
 using Interval = std::pair<double, double>;  // [t0, t1] along a line p + t d
+constexpr double kMaxTraceReach = 1000;  // longest trace_length accepted, in extents of the rock
+constexpr double kMaxLines = 100000;     // most lines of one set across the rock
 
 //! The part of the line p + t d (|d| = 1) inside the circle (c, r), or an empty interval.
 Interval circle_chord(const std::array<double, 2>& p, const std::array<double, 2>& d, const std::array<double, 2>& c,
@@ -86,16 +88,36 @@ std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& s
     holes.push_back({shape.center, shape.hole_radius});
   const std::array<double, 2> d{std::cos(set.angle), std::sin(set.angle)}, n{-d[1], d[0]};
   const bool through = set.trace_length == 0 || set.persistence == 1;
+  // The traces repeat along a line with period trace_length / persistence. A trace longer than the rock's extent
+  // crosses it whole, so nothing is lost by a limit of kMaxTraceReach extents, which keeps the period finite; a
+  // trace shorter than `min_length` would be dropped anyway, and the limit bounds the traces a line holds.
+  const double extent = 2 * reach;
+  if (!through && !(set.trace_length >= min_length)) {
+    std::ostringstream os;
+    os << "trace_length = " << set.trace_length << " m: must be at least " << min_length << " m (half an element)";
+    fail(os.str());
+  }
+  if (!through && !(set.trace_length <= kMaxTraceReach * extent)) {
+    std::ostringstream os;
+    os << "trace_length = " << set.trace_length << " m: must be at most " << kMaxTraceReach
+       << " times the rock's extent (" << kMaxTraceReach * extent << " m); a trace that long crosses the rock whole";
+    fail(os.str());
+  }
   const double period = through ? 0.0 : set.trace_length / set.persistence;
   std::mt19937_64 bits(static_cast<std::uint64_t>(set.seed));
   const double clearance = 2 * min_length;  // an element
+  // The lines n . (x - c) = offset + k spacing are the same for any offset taken modulo the spacing; the exact
+  // remainder keeps every line where it belongs for any offset (offset + k spacing would lose the lines' places
+  // to round-off once offset / spacing is large), and the lines are visited in the same order.
+  const double offset = std::remainder(set.offset, set.spacing);
+  if (!std::isfinite(offset)) fail("offset must be a finite number of metres");
   // Lines k = k_lo..k_hi with |offset + k spacing| < reach, in order.
-  const long long k_lo = static_cast<long long>(std::ceil((-reach - set.offset) / set.spacing));
-  const long long k_hi = static_cast<long long>(std::floor((reach - set.offset) / set.spacing));
-  if (k_hi - k_lo > 100000) fail("spacing: more than 100,000 lines across the rock");
+  if (!(extent / set.spacing <= kMaxLines)) fail("spacing: more than 100,000 lines across the rock");
+  const long long k_lo = static_cast<long long>(std::ceil((-reach - offset) / set.spacing));
+  const long long k_hi = static_cast<long long>(std::floor((reach - offset) / set.spacing));
   std::vector<Segment> out;
   for (long long k = k_lo; k <= k_hi; ++k) {
-    const double s = set.offset + static_cast<double>(k) * set.spacing;
+    const double s = offset + static_cast<double>(k) * set.spacing;
     const std::array<double, 2> p{c[0] + s * n[0], c[1] + s * n[1]};  // the line's point nearest the centre
     const double shift = static_cast<double>(bits() >> 11) * (1.0 / 9007199254740992.0);  // one per line
     const Interval rock = box ? box_chord(p, d, shape.min, shape.max) : circle_chord(p, d, shape.center, shape.radius);
@@ -125,10 +147,12 @@ std::vector<Segment> joint_set_traces(const JointSetSpec& set, const MeshSpec& s
     if (through) {
       traces.push_back(rock);
     } else {
-      // Traces [t0 + m period, t0 + m period + trace_length] covering [rock.first, rock.second].
+      // Traces [t0 + m period, t0 + m period + trace_length] covering [rock.first, rock.second]: the chord
+      // holds at most chord / period + 2 of them (the period is finite and at least half an element, above).
       const double t0 = -reach - shift * period;
       const long long m0 = static_cast<long long>(std::floor((rock.first - t0) / period)) - 1;
-      for (long long m = m0;; ++m) {
+      const long long m_end = m0 + static_cast<long long>(std::ceil((rock.second - rock.first) / period)) + 3;
+      for (long long m = m0; m < m_end; ++m) {
         const double a = snap(t0 + static_cast<double>(m) * period), b = snap(t0 + static_cast<double>(m) * period + set.trace_length);
         if (a >= rock.second) break;
         const double lo = std::max(a, rock.first), hi = std::min(b, rock.second);

@@ -25,7 +25,7 @@ std::vector<int> joint_line_vertices(const TriangleMesh& mesh, const std::vector
       const double lx = g.b[0] - g.a[0], ly = g.b[1] - g.a[1], len2 = lx * lx + ly * ly;
       const double px = mesh.vertices[v][0] - g.a[0], py = mesh.vertices[v][1] - g.a[1];
       const double t = std::clamp((px * lx + py * ly) / len2, 0.0, 1.0);
-      if (std::hypot(px - t * lx, py - t * ly) < 1e-6 * h) {
+      if (std::hypot(px - t * lx, py - t * ly) < 1e-6 * std::max(h, std::sqrt(len2))) {  // h: 0 for a mesh file
         out.push_back(static_cast<int>(v));
         break;
       }
@@ -127,9 +127,75 @@ void check_mesh_segment(const MeshSpec& s, const Segment& g, const std::string& 
       const bool inside = s.is_rectangle() ? p[0] >= s.min[0] - tol && p[0] <= s.max[0] + tol && p[1] >= s.min[1] - tol &&
                                                  p[1] <= s.max[1] + tol
                                            : r <= s.radius + tol && (s.shape != MeshShape::disc_with_hole || r >= s.hole_radius - tol);
+      for (std::size_t k = 0; k < s.holes.size() && inside; ++k)
+        if (std::hypot(p[0] - s.holes[k].center[0], p[1] - s.holes[k].center[1]) < s.holes[k].radius - tol)
+          throw InputError(label + ": the end " + point(p) + " lies inside hole " + std::to_string(k) +
+                           " (centre [" + num(s.holes[k].center[0]) + ", " + num(s.holes[k].center[1]) + "] m, radius " +
+                           num(s.holes[k].radius) + " m); both ends must lie in the rock or on its boundary");
       if (!inside)
         throw InputError(label + ": the end " + point(p) + " lies outside the rock; both ends must lie in the " +
                          mesh_shape_name(s.shape) + " or on its boundary");
+    }
+  }
+}
+
+namespace {
+//! Distance [m] between the segments a and b: 0 where they cross or touch.
+double segment_distance(const Segment& a, const Segment& b) {
+  const Vec2 a0{a.a[0], a.a[1]}, a1{a.b[0], a.b[1]}, b0{b.a[0], b.a[1]}, b1{b.b[0], b.b[1]};
+  auto side = [](const Vec2& p, const Vec2& q, const Vec2& r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
+  const double d0 = side(a0, a1, b0), d1 = side(a0, a1, b1), d2 = side(b0, b1, a0), d3 = side(b0, b1, a1);
+  if (((d0 > 0 && d1 < 0) || (d0 < 0 && d1 > 0)) && ((d2 > 0 && d3 < 0) || (d2 < 0 && d3 > 0))) return 0.0;
+  return std::sqrt(std::min({segment_distance2(a0, a1, b0.x, b0.y), segment_distance2(a0, a1, b1.x, b1.y),
+                             segment_distance2(b0, b1, a0.x, a0.y), segment_distance2(b0, b1, a1.x, a1.y)}));
+}
+}  // namespace
+
+void check_segment_clearance(const MeshSpec& s, const std::vector<LabelledSegment>& segments) {
+  if (s.shape == MeshShape::file || segments.empty()) return;
+  const double clear = 0.5 * s.element_size;
+  const double tol = 1e-9 * std::max({s.max[0] - s.min[0], s.max[1] - s.min[1], 2 * s.radius});
+  auto point = [](const std::array<double, 2>& p) { return "(" + num(p[0]) + ", " + num(p[1]) + ") m"; };
+  const std::string rule = "; lines a built mesh follows must meet or stay at least half an element (" + s.label +
+                           ".element_size / 2 = " + num(clear) + " m) apart, or the mesh shrinks to their spacing: move "
+                           "them apart, join them, or use smaller elements";
+  // The boundary's circles (the outline of a disc, the holes) and the distance to the outline of a rectangle.
+  std::vector<Circle> circles = s.holes;
+  if (s.shape == MeshShape::disc_with_hole || s.shape == MeshShape::rectangle_with_hole)
+    circles.push_back({s.center, s.hole_radius});
+  if (!s.is_rectangle()) circles.push_back({s.center, s.radius});
+  auto boundary_distance = [&](const std::array<double, 2>& p) {
+    double d = 1e308;
+    if (s.is_rectangle())
+      d = std::min({std::fabs(p[0] - s.min[0]), std::fabs(p[0] - s.max[0]), std::fabs(p[1] - s.min[1]),
+                    std::fabs(p[1] - s.max[1])});
+    for (const Circle& c : circles) d = std::min(d, std::fabs(std::hypot(p[0] - c.center[0], p[1] - c.center[1]) - c.radius));
+    return d;
+  };
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const LabelledSegment& a = segments[k];
+    for (const auto& p : {a.segment.a, a.segment.b}) {
+      const double d = boundary_distance(p);
+      if (d > tol && d < clear)
+        throw InputError(a.label + ": its end " + point(p) + " lies " + num(d) + " m from the rock's boundary" + rule);
+    }
+    for (const Circle& c : circles) {  // a shallow chord: both ends on the circle, its middle close to it
+      auto on = [&](const std::array<double, 2>& p) {
+        return std::fabs(std::hypot(p[0] - c.center[0], p[1] - c.center[1]) - c.radius) <= tol;
+      };
+      if (!on(a.segment.a) || !on(a.segment.b)) continue;
+      const std::array<double, 2> mid{0.5 * (a.segment.a[0] + a.segment.b[0]), 0.5 * (a.segment.a[1] + a.segment.b[1])};
+      const double sagitta = c.radius - std::hypot(mid[0] - c.center[0], mid[1] - c.center[1]);
+      if (sagitta < clear)
+        throw InputError(a.label + ": a chord of the circle of radius " + num(c.radius) + " m whose middle lies " +
+                         num(std::max(sagitta, 0.0)) + " m from it" + rule);
+    }
+    for (std::size_t l = 0; l < k; ++l) {
+      const LabelledSegment& b = segments[l];
+      if (a.set >= 0 && b.set >= 0) continue;
+      const double d = segment_distance(a.segment, b.segment);
+      if (d > tol && d < clear)
+        throw InputError(a.label + ": runs " + num(d) + " m from " + b.label + rule);
     }
   }
 }
@@ -171,13 +237,27 @@ NamedMesh build_mesh(const MeshSpec& s) {
 RockModel build_rock_model(const RockModelSpec& spec) {
   RockModel m;
   MeshSpec mesh = spec.mesh;
-  if (mesh.shape != MeshShape::file)  // a built shape follows the pre-cut cracks
-    for (const PreCutCrack& c : spec.cracks) mesh.joint_lines.push_back(c.segment);
+  // A built shape follows the pre-cut cracks and the joints; a mesh file has its own edges along them. Either way
+  // the mesh jitter keeps the vertices on these lines in place, so that the lines stay straight.
+  for (const PreCutCrack& c : spec.cracks) mesh.joint_lines.push_back(c.segment);
   const std::vector<std::vector<Segment>> traces = joint_sets_traces(spec.joint_sets, spec.mesh);  // of each set
-  if (mesh.shape != MeshShape::file)  // a built shape follows the joints; a file has its own edges
-    for (const std::vector<Segment>& set : traces) mesh.joint_lines.insert(mesh.joint_lines.end(), set.begin(), set.end());
+  for (const std::vector<Segment>& set : traces) mesh.joint_lines.insert(mesh.joint_lines.end(), set.begin(), set.end());
+  {  // room for the elements between the lines, before any meshing
+    std::vector<LabelledSegment> lines;
+    for (std::size_t k = 0; k < spec.mesh.joint_lines.size(); ++k)
+      lines.push_back({spec.mesh.label + ".joint_line." + std::to_string(k), spec.mesh.joint_lines[k]});
+    for (const PreCutCrack& c : spec.cracks) lines.push_back({c.label, c.segment});
+    for (std::size_t k = 0; k < traces.size(); ++k)
+      for (std::size_t t = 0; t < traces[k].size(); ++t)
+        lines.push_back(spec.joint_sets[k].segments.empty()
+                            ? LabelledSegment{spec.joint_sets[k].label + " (trace " + std::to_string(t) + ")", traces[k][t],
+                                              static_cast<int>(k)}
+                            : LabelledSegment{spec.joint_sets[k].label, traces[k][t]});
+    check_segment_clearance(spec.mesh, lines);
+  }
   m.mesh = build_mesh(mesh);
   m.topology = build_topology(m.mesh.mesh);
+  if (spec.heterogeneity) check_correlation_length(*spec.heterogeneity, mean_joint_length(m.topology));
   const std::vector<JointProperties> joints =  // a correlated strength field is read at the joints' midpoints
       spec.heterogeneity ? heterogeneous_joints(spec.material, *spec.heterogeneity, joint_midpoints(m.topology))
                          : std::vector<JointProperties>{};
@@ -220,15 +300,30 @@ RockModel build_rock_model(const RockModelSpec& spec) {
     viscous.insert(viscous.end(), slots.begin(), slots.end());
   }
   if (!viscous.empty()) solver.set_viscous_boundary(viscous);
+  // The joints along a segment the input gave (a pre-cut crack, an explicit joint): they must cover it, or part of
+  // it lies outside the rock (beyond the outline, in a hole) or, in a mesh file, off the mesh's edges.
+  auto joints_along = [&](const std::string& label, const Segment& g) {
+    const double length = std::hypot(g.b[0] - g.a[0], g.b[1] - g.a[1]);
+    const double tolerance = 1e-6 * std::max(spec.mesh.element_size, length);
+    std::vector<int> joints = solver.joints_on_segment(g.a[0], g.a[1], g.b[0], g.b[1], tolerance);
+    double covered = 0;
+    for (int j : joints) {
+      const auto& p = topo.node_positions[topo.joints[j].a0];
+      const auto& q = topo.node_positions[topo.joints[j].a1];
+      covered += std::hypot(q[0] - p[0], q[1] - p[1]);
+    }
+    if (!(covered >= (1 - 1e-6) * length))
+      throw InputError(label + ": the segment from [" + num(g.a[0]) + ", " + num(g.a[1]) + "] to [" + num(g.b[0]) + ", " +
+                       num(g.b[1]) + "] m (" + num(length) + " m) runs along joints of the rock mesh for " + num(covered) +
+                       " m only: " + (spec.mesh.shape == MeshShape::file
+                                          ? "the rest lies outside the rock, in a hole, or off the mesh file's edges "
+                                            "(a mesh file needs edges all along it)"
+                                          : "the rest lies outside the rock or in a hole; both ends and the whole "
+                                            "segment must lie in the rock"));
+    return joints;
+  };
   for (const PreCutCrack& c : spec.cracks) {
-    const double tolerance = 1e-6 * std::max(spec.mesh.element_size, std::hypot(c.segment.b[0] - c.segment.a[0],
-                                                                               c.segment.b[1] - c.segment.a[1]));
-    std::vector<int> joints = solver.joints_on_segment(c.segment.a[0], c.segment.a[1], c.segment.b[0], c.segment.b[1],
-                                                       tolerance);
-    if (joints.empty())
-      throw InputError(c.label + ": no joint of the rock mesh lies along the segment from [" + num(c.segment.a[0]) + ", " +
-                       num(c.segment.a[1]) + "] to [" + num(c.segment.b[0]) + ", " + num(c.segment.b[1]) +
-                       "] m (a mesh file needs edges along it; a built shape needs it inside the rock)");
+    std::vector<int> joints = joints_along(c.label, c.segment);
     solver.break_joints(joints);
     m.crack_joints.push_back(std::move(joints));
   }
@@ -238,18 +333,22 @@ RockModel build_rock_model(const RockModelSpec& spec) {
     std::vector<int> joints;
     for (const Segment& t : traces[k]) {
       const double tolerance = 1e-6 * std::max(spec.mesh.element_size, std::hypot(t.b[0] - t.a[0], t.b[1] - t.a[1]));
-      for (int j : solver.joints_on_segment(t.a[0], t.a[1], t.b[0], t.b[1], tolerance)) {
+      // An explicit joint must lie along the mesh all its length; a set's traces are clipped to the rock.
+      for (int j : set.segments.empty() ? solver.joints_on_segment(t.a[0], t.a[1], t.b[0], t.b[1], tolerance)
+                                        : joints_along(set.label, t)) {
         joints.push_back(j);
         m.joint_set_of[j] = static_cast<int>(k);  // a later set wins where two meet
       }
     }
-    if (joints.empty() && !set.segments.empty())
-      throw InputError(set.label + ": no joint of the rock mesh lies along its segment (a mesh file needs edges along "
-                       "it; a built shape needs it inside the rock)");
-    if (set.open)
+    if (set.open) {
       solver.break_joints(joints);
-    else
-      solver.set_joint_properties(joints, set.properties);
+    } else {
+      try {
+        solver.set_joint_properties(joints, set.properties);
+      } catch (const InputError& e) {  // the set's key, not a joint number the user never gave
+        throw InputError(set.label + ": its strength cannot be given to the mesh's joints along it (" + e.what() + ")");
+      }
+    }
     m.set_joints.push_back(std::move(joints));
   }
   if (spec.in_situ) {

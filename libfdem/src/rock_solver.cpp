@@ -250,20 +250,26 @@ void RockSolver::set_in_situ_stress(const InSituStress& s, const std::vector<int
   for (const BoundaryEdge& b : boundary_edges_) is_boundary[b.n0] = 1;
   std::vector<std::uint8_t> c = to_host(a.node_loads.constraint);
   std::vector<Vec2> load(node_count(), Vec2{0.0, 0.0});
+  // Half of an edge's traction resultant sigma(midpoint) N, which each of its two nodes takes.
+  auto half_traction = [&](int slot) {
+    const int n0 = slot_first_node(slot), n1 = slot_second_node(slot);
+    const Vec2 N = edge_outward_normal(at(n0), at(n1));
+    const Mat2 sig = s.at(0.5 * (y0[n0] + y0[n1]));
+    return Vec2{0.5 * (sig.a * N.x + sig.b * N.y), 0.5 * (sig.c * N.x + sig.d * N.y)};
+  };
   for (int slot : held) {
     if (slot < 0 || slot >= 3 * triangles_ || !is_boundary[slot])
       throw InputError("in-situ stress: edge slot " + std::to_string(slot) + " is not an edge of the mesh boundary");
     if (done[slot]) continue;
     done[slot] = 1;
-    const int n0 = slot_first_node(slot), n1 = slot_second_node(slot);
-    const Vec2 N = edge_outward_normal(at(n0), at(n1));
-    const Mat2 sig = s.at(0.5 * (y0[n0] + y0[n1]));
-    const Vec2 half{0.5 * (sig.a * N.x + sig.b * N.y), 0.5 * (sig.c * N.x + sig.d * N.y)};
-    for (int n : {n0, n1}) {
+    const Vec2 half = half_traction(slot);
+    for (int n : {slot_first_node(slot), slot_second_node(slot)}) {
       load[n] = {load[n].x + half.x, load[n].y + half.y};
       c[n] |= kHeldLoad;
     }
   }
+  if (s.gradient[0] != 0 || s.gradient[1] != 0 || s.gradient[2] != 0)
+    carry_cut_weight(s, boundary_edges_, node_vertex_, x0, y0, done, load);
   copy_from_host(a.triangle_params.inv_f0, inv_f0);
   copy_from_host(a.joint_params.preload, preload);
   copy_from_host(a.node_params.held, load);
@@ -312,7 +318,16 @@ EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
                    ScaleVelocities{device_ptr(a.nodes.vx), device_ptr(a.nodes.vy), f});
     reset_contact_budgets();  // the velocities no longer tell how far the last update moved the nodes
   };
+  // The relaxation finds the state before t = 0: the in-situ stress, gravity and the held boundaries only. The
+  // run's own loads start at t = 0: the edge pressures (from the ramp's start), the platens' motion and the
+  // initial velocities, so pressures are off, platens held still and every node starts at rest meanwhile.
+  const double run_pressure_scale = pressure_scale_;
+  const std::vector<Vec2> run_prescribed = to_host(a.node_loads.v_prescribed);
+  const std::vector<double> run_vx = to_host(a.nodes.vx), run_vy = to_host(a.nodes.vy);
+  pressure_scale_ = 0;
+  fill_device("fdem.equilibrate.platens", a.node_loads.v_prescribed, Vec2{0.0, 0.0});
   EquilibriumReport r;
+  scale_velocities(0.0);
   double reference = std::max(elastic(), 1e-300), window_peak = 0;
   long checking = 0;  // steps into the undamped check (0: damping)
   long quiet = 0;     // damped steps in a row below the tolerance (a check starts after half a window of them)
@@ -339,8 +354,13 @@ EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
     if (2 * quiet >= window) checking = 1, quiet = 0, window_peak = ratio, ++r.checks;
   }
   r.kinetic_ratio = window_peak;
-  // The state reached starts the run: nodes at rest, clock and ledgers at zero.
-  scale_velocities(0.0);
+  // The state reached starts the run: clock and ledgers at zero, the run's loads back, every node with the
+  // velocity the run gave it before the relaxation (at rest unless rock.initial_velocity or a platen moves it).
+  pressure_scale_ = run_pressure_scale;
+  copy_from_host(a.node_loads.v_prescribed, run_prescribed);
+  copy_from_host(a.nodes.vx, run_vx);
+  copy_from_host(a.nodes.vy, run_vy);
+  reset_contact_budgets();
   time_ = 0, dt_prev_ = 0, steps_ = 0, last_speed_ = 0;
   a.ledger.work.assign(node_count(), NodeWork{0, 0, 0, 0, 0, 0});
   a.ledger.support.assign(node_count(), Vec2{0.0, 0.0});

@@ -24,7 +24,7 @@ void CrackGasOptions::validate() const {
     bad("friction_factor", *friction_factor, "must be >= 0");
   if (roughness && (!(*roughness > 0) || !std::isfinite(*roughness))) bad("roughness", *roughness, "must be > 0 [m]");
   if (!(viscosity >= 0) || !std::isfinite(viscosity)) bad("viscosity", viscosity, "must be >= 0 [Pa s]");
-  if (!(courant > 0 && courant <= 1)) bad("courant", courant, "must be in (0, 1]");
+  if (!(courant >= kMinCourant && courant <= 1)) bad("courant", courant, "must be in [0.01, 1]");
   if (!(handover_width >= 1) || !std::isfinite(handover_width))
     bad("handover_width", handover_width, "must be >= 1 [cells]");
 }
@@ -191,7 +191,15 @@ int CrackGas::advance(double dt, double interval) {
   const double limit = stable_dt();
   if (!(limit > 0))
     throw InstabilityError("crack gas state not valid: " + describe_invalid_segment());
-  const int steps = std::isfinite(limit) ? std::max(1, static_cast<int>(std::ceil(dt / limit * (1 - 1e-12)))) : 1;
+  // The count in floating point first: dt / limit can exceed any int (a tiny limit), and must not wrap.
+  const double wanted = std::isfinite(limit) ? std::max(1.0, std::ceil(dt / limit * (1 - 1e-12))) : 1.0;
+  if (!(wanted <= kMaxSubsteps)) {
+    std::ostringstream os;
+    os << "the crack gas needs " << wanted << " substeps of " << limit << " s in one step of " << dt
+       << " s (at most " << kMaxSubsteps << "): its signal crosses a segment far faster than the step allows";
+    throw InstabilityError(os.str());
+  }
+  const int steps = static_cast<int>(wanted);
   for (int k = 0; k < steps; ++k) {  // each substep starts from the primitives just computed
     step_from_primitives(dt / steps, interval);
     update_primitives();

@@ -12,6 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 using namespace blastsim::fdem;
@@ -181,6 +184,132 @@ TEST_CASE("S2: a rock whose stress grows with depth under gravity, free at the t
   CHECK(rock.time() == 0.0);
   CHECK(rock.kinetic_energy() == 0.0);
   CHECK(err <= 0.5 * across);
+}
+
+TEST_CASE("S2: under gravity a rock with a hole off its centre, held on three sides, carries the hole's missing weight "
+          "and comes to rest", "[fdem][S2][gravity]") {
+  // The field is the uncut rock mass's: its tractions on the held sides balance the weight of the whole square,
+  // but the hole took rho g A_hole of it (and its moment about the centre, as the hole sits off it). Without the
+  // weight carried over, the model is pushed up by rho g A_hole and never comes to rest.
+  RockMaterial m = RockMaterial::paper_table2();
+  const double g = 9.81, top = 0.2, k = 1.5, rho = m.density, a = 0.03;
+  const NamedMesh mesh = gmsh_rectangle_with_hole(0.0, 0.0, 0.2, top, 0.07, 0.1, a, 0.02);
+  const FdemTopology topo = build_topology(mesh.mesh);
+  RockOptions o;
+  o.gravity = {0.0, -g};
+  o.contact = false;
+  InSituStress s;
+  s.reference_y = top;
+  s.gradient = {k * rho * g, rho * g, 0.0};
+  std::vector<int> held;
+  std::vector<char> held_slot(topo.node_positions.size(), 0);
+  for (const std::string side : {"left", "right", "bottom"})
+    for (int slot : boundary_slots(topo, mesh.boundary_groups.at(side), side)) held.push_back(slot), held_slot[slot] = 1;
+  // The balance of the dead loads with the weight, node by node (the loads the solver takes: carry_cut_weight()).
+  std::vector<double> x0, y0;
+  for (const auto& p : topo.node_positions) x0.push_back(p[0]), y0.push_back(p[1]);
+  std::vector<Vec2> field(topo.node_positions.size(), Vec2{0.0, 0.0});
+  for (int slot : held) {
+    const int n0 = slot, n1 = 3 * (slot / 3) + (slot % 3 + 1) % 3;
+    const Vec2 N{y0[n1] - y0[n0], -(x0[n1] - x0[n0])};
+    const Mat2 sig = s.at(0.5 * (y0[n0] + y0[n1]));
+    for (int n : {n0, n1}) field[n] = {field[n].x + 0.5 * (sig.a * N.x + sig.b * N.y), field[n].y + 0.5 * (sig.c * N.x + sig.d * N.y)};
+  }
+  std::vector<Vec2> carried = field;
+  carry_cut_weight(s, topo.boundary_edges, topo.node_vertex, x0, y0, held_slot, carried);
+  double area = 0;  // of the rock: each triangle's
+  for (int t = 0; t < topo.triangle_count(); ++t) {
+    const auto &p = topo.node_positions[3 * t], &q = topo.node_positions[3 * t + 1], &r = topo.node_positions[3 * t + 2];
+    area += 0.5 * ((q[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (q[1] - p[1]));
+  }
+  auto resultant = [&](const std::vector<Vec2>& f) {
+    Vec2 sum{0.0, -rho * g * area};
+    for (const Vec2& v : f) sum = {sum.x + v.x, sum.y + v.y};
+    return sum;
+  };
+  const double weight = rho * g * area;
+  const Vec2 before = resultant(field), after = resultant(carried);
+  std::printf("S2 gravity with a hole: the held field's loads and the weight leave %.4g N/m upwards (rho g A_hole of "
+              "the polygon %.4g N/m); with the hole's weight carried, %.3e N/m (x %.3e)\n", before.y,
+              rho * g * (0.2 * top - area), after.y, after.x);
+  CHECK_THAT(before.y, WithinRel(rho * g * (0.2 * top - area), 1e-9));  // the polygon's hole, exactly
+  CHECK(std::fabs(after.y) <= 1e-12 * weight);
+  CHECK(std::fabs(after.x) <= 1e-12 * weight);
+  // Nothing is carried without a hole (the same loads, bit for bit).
+  {
+    NamedMesh plain;
+    plain.mesh = structured_rectangle(8, 8, 0.0, 0.2, 0.0, top);
+    const FdemTopology pt = build_topology(plain.mesh);
+    std::vector<double> px, py;
+    for (const auto& p : pt.node_positions) px.push_back(p[0]), py.push_back(p[1]);
+    std::vector<char> all(pt.node_positions.size(), 0);
+    for (const BoundaryEdge& b : pt.boundary_edges) all[b.n0] = 1;
+    std::vector<Vec2> none(pt.node_positions.size(), Vec2{1.0, 2.0});
+    carry_cut_weight(s, pt.boundary_edges, pt.node_vertex, px, py, all, none);
+    CHECK(std::all_of(none.begin(), none.end(), [](const Vec2& v) { return v.x == 1.0 && v.y == 2.0; }));
+  }
+  // The solver with these loads comes to rest, where it did not before.
+  RockSolver rock(topo, m, o);
+  rock.set_in_situ_stress(s, held);
+  const EquilibriumReport eq = rock.equilibrate({1e-8, 30000});
+  std::printf("S2 gravity with a hole: relaxed in %ld steps (%d undamped checks, kinetic / elastic %.2e)\n", eq.steps,
+              eq.checks, eq.kinetic_ratio);
+  CHECK(eq.converged);
+  CHECK(eq.broken_joints == 0);
+}
+
+TEST_CASE("S2: the relaxation finds the state before t = 0: edge pressures off, platens still, initial velocities "
+          "given after", "[fdem][S2]") {
+  // A square under a uniform in-situ stress held on its left and right sides, the bottom on rollers, a platen on
+  // top moving down at 0.1 m/s, a pressure on the top edges and an initial velocity: none of these is the state
+  // before t = 0, so the relaxation must not see them, and the run must start with all of them.
+  const RockMaterial m = RockMaterial::paper_table2();
+  NamedMesh mesh;
+  mesh.mesh = structured_rectangle(6, 6, 0.0, 0.1, 0.0, 0.1);
+  const FdemTopology topo = build_topology(mesh.mesh);
+  std::vector<int> held, top_slots, top_nodes, bottom_nodes;
+  auto at = [](double u, double v) { return std::fabs(u - v) < 1e-12; };
+  for (const BoundaryEdge& b : topo.boundary_edges) {
+    const auto &p = topo.node_positions[b.n0], &q = topo.node_positions[b.n1];
+    if ((at(p[0], 0.0) && at(q[0], 0.0)) || (at(p[0], 0.1) && at(q[0], 0.1))) held.push_back(b.n0);
+    if (at(p[1], 0.1) && at(q[1], 0.1)) top_slots.push_back(b.n0);
+  }
+  for (size_t n = 0; n < topo.node_positions.size(); ++n) {
+    if (at(topo.node_positions[n][1], 0.1)) top_nodes.push_back(static_cast<int>(n));
+    if (at(topo.node_positions[n][1], 0.0)) bottom_nodes.push_back(static_cast<int>(n));
+  }
+  REQUIRE((held.size() == 12 && top_slots.size() == 6));
+  InSituStress s;
+  s.at_reference = {-5e6, 0.0, 0.0};
+  auto relaxed = [&](bool loads) {
+    auto rock = std::make_unique<RockSolver>(topo, m, RockOptions{});
+    if (loads) {
+      std::vector<double> v(2 * rock->node_count(), 0.0);
+      for (int n = 0; n < rock->node_count(); ++n) v[2 * n] = 0.5;  // rock.initial_velocity [0.5, 0]
+      rock->set_velocities(v);
+      rock->set_edge_pressure(top_slots, 20e6);
+    }
+    rock->prescribe_velocity(bottom_nodes, false, true, 0.0, 0.0);
+    rock->prescribe_velocity(top_nodes, false, true, 0.0, loads ? -0.1 : 0.0);
+    rock->set_in_situ_stress(s, held);
+    const EquilibriumReport eq = rock->equilibrate({1e-10, 30000});
+    CHECK(eq.converged);
+    return std::make_pair(std::move(rock), eq);
+  };
+  const auto [plain, plain_eq] = relaxed(false);
+  const auto [loaded, loaded_eq] = relaxed(true);
+  std::printf("S2 loads at t = 0: relaxed in %ld steps with them, %ld without; elastic energy %.10g vs %.10g J/m\n",
+              loaded_eq.steps, plain_eq.steps, loaded_eq.elastic_energy, plain_eq.elastic_energy);
+  // The same relaxation: the loads were off.
+  CHECK(loaded_eq.steps == plain_eq.steps);
+  CHECK(loaded_eq.elastic_energy == plain_eq.elastic_energy);
+  // The run starts with its loads: the pressure at full scale, the platen moving, the rest at the initial velocity.
+  CHECK(loaded->pressure_scale() == 1.0);
+  const RockSnapshot snap = loaded->snapshot();
+  for (int n : top_nodes) CHECK(snap.vy[n] == -0.1);
+  for (int n : bottom_nodes) CHECK(snap.vy[n] == 0.0);
+  CHECK(snap.vx[0] == 0.5);
+  CHECK(loaded->time() == 0.0);
 }
 
 TEST_CASE("S3: Kirsch: the hoop stress around a hole in a rock under biaxial in-situ stress, at rest after "

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <utility>
 #include <vector>
 
 using namespace blastsim;
@@ -101,6 +102,90 @@ TEST_CASE("J1 joint set: the traces have the set's direction, spacing, trace len
   JointSetSpec other = set;
   other.seed = 4;
   CHECK(joint_set_traces(other, box, 0.005)[0].a != traces[0].a);
+}
+
+TEST_CASE("J1 joint set: any offset places the same lines (offset modulo the spacing), and the traces' period is "
+          "bounded", "[fdem][jointset][J1]") {
+  // The lines n . (x - c) = offset + k spacing do not change when offset moves by whole spacings: far offsets
+  // (1e17 m used to hang, 1e14 m misplaced the lines) give the traces of the offset's remainder, bit for bit (the
+  // remainder is exact).
+  MeshSpec box;
+  box.shape = MeshShape::rectangle;
+  box.min = {-1.0, -1.0}, box.max = {1.0, 1.0};
+  box.element_size = 0.02;
+  JointSetSpec set;
+  set.label = "rock.joint_set.0";
+  set.angle = 0.4;
+  set.spacing = 0.125;  // a power of two: 1e17 and 1e300 are whole numbers of spacings
+  set.trace_length = 0.3;
+  set.persistence = 0.6;
+  // Pairs (near, far) of offsets a whole number of spacings apart, each exactly representable.
+  const std::vector<std::pair<double, double>> pairs{
+      {0.0, 1e17}, {0.0, -1e17}, {0.0, 1e300}, {0.0625, std::ldexp(1.0, 47) + 0.0625}};
+  for (const auto& [near, far] : pairs) {
+    JointSetSpec a = set, b = set;
+    a.offset = near, b.offset = far;
+    const std::vector<Segment> ta = joint_set_traces(a, box, 0.01), tb = joint_set_traces(b, box, 0.01);
+    INFO("offset " << far << " against " << near);
+    REQUIRE(ta.size() > 20);
+    REQUIRE(tb.size() == ta.size());
+    for (size_t k = 0; k < ta.size(); ++k) CHECK((tb[k].a == ta[k].a && tb[k].b == ta[k].b));
+  }
+  // An offset of any size finishes and keeps every line within the rock.
+  JointSetSpec huge = set;
+  huge.offset = 3.7e250;
+  const std::vector<Segment> far_traces = joint_set_traces(huge, box, 0.01);
+  CHECK(!far_traces.empty());
+  for (const Segment& t : far_traces)
+    for (const auto& p : {t.a, t.b}) CHECK((std::fabs(p[0]) <= 1.0 + 1e-12 && std::fabs(p[1]) <= 1.0 + 1e-12));
+  // A trace longer than 1000 extents of the rock (an infinite period) is refused naming trace_length.
+  JointSetSpec longest = set;
+  longest.trace_length = 1e308, longest.persistence = 0.5;
+  CHECK_THROWS_WITH(joint_set_traces(longest, box, 0.01),
+                    Catch::Contains("rock.joint_set.0.trace_length") && Catch::Contains("1000 times"));
+  longest.trace_length = 2000.0;  // 707 extents: accepted, one trace or none a line
+  const std::vector<Segment> whole = joint_set_traces(longest, box, 0.01);
+  for (const Segment& t : whole) CHECK(trace_length_of(t) <= 2 * std::sqrt(2.0) + 1e-9);
+  JointSetSpec tiny = set;
+  tiny.trace_length = 0.001;
+  CHECK_THROWS_WITH(joint_set_traces(tiny, box, 0.01), Catch::Contains("rock.joint_set.0.trace_length"));
+}
+
+TEST_CASE("Lines a built mesh follows meet or leave room for an element: closer ones are refused before meshing",
+          "[fdem][jointset][clearance]") {
+  // Two cracks 50 um apart made Gmsh mesh the strip between them at its width (1.3 million triangles, minutes of
+  // set-up); the check refuses them, naming both, and takes lines that cross, touch, or stay h / 2 apart.
+  MeshSpec box;
+  box.shape = MeshShape::rectangle;
+  box.min = {0.0, 0.0}, box.max = {1.0, 1.0};
+  box.element_size = 0.02;
+  box.label = "rock.mesh";
+  const Segment a{{0.2, 0.5}, {0.8, 0.5}};
+  auto pair = [&](const Segment& b) {
+    check_segment_clearance(box, {{"rock.crack.0", a}, {"rock.crack.1", b}});
+  };
+  CHECK_THROWS_WITH(pair({{0.2, 0.50005}, {0.8, 0.50005}}),
+                    Catch::Contains("rock.crack.1") && Catch::Contains("rock.crack.0") && Catch::Contains("5e-05 m"));
+  CHECK_THROWS_WITH(pair({{0.807, 0.5}, {0.9, 0.6}}), Catch::Contains("0.007 m"));  // an end 7 mm short of it
+  CHECK_NOTHROW(pair({{0.2, 0.511}, {0.8, 0.511}}));   // 11 mm: more than half an element
+  CHECK_NOTHROW(pair({{0.5, 0.2}, {0.5, 0.8}}));       // crossing
+  CHECK_NOTHROW(pair({{0.8, 0.5}, {0.9, 0.7}}));       // touching at an end
+  // Ends near the outline; generated traces, which are not checked against each other (their own rules place them).
+  CHECK_THROWS_WITH(check_segment_clearance(box, {{"rock.crack.0", {{0.005, 0.3}, {0.5, 0.3}}}}),
+                    Catch::Contains("rock.crack.0") && Catch::Contains("boundary"));
+  CHECK_NOTHROW(check_segment_clearance(box, {{"rock.crack.0", {{0.0, 0.3}, {0.5, 0.3}}}}));
+  CHECK_NOTHROW(check_segment_clearance(box, {{"t0", {{0.0, 0.3}, {1.0, 0.3}}, 0}, {"t1", {{0.0, 0.305}, {1.0, 0.305}}, 1}}));
+  // A shallow chord of a disc: both ends on the circle, its middle 2 mm inside.
+  MeshSpec disc;
+  disc.shape = MeshShape::disc;
+  disc.radius = 0.5, disc.element_size = 0.02, disc.label = "rock.mesh";
+  const double y = 0.498, x = std::sqrt(0.25 - y * y);
+  CHECK_THROWS_WITH(check_segment_clearance(disc, {{"rock.joint.0", {{-x, y}, {x, y}}}}),
+                    Catch::Contains("rock.joint.0") && Catch::Contains("chord"));
+  // A mesh file's edges are given: nothing is checked.
+  MeshSpec file;
+  file.shape = MeshShape::file;
+  CHECK_NOTHROW(check_segment_clearance(file, {{"rock.crack.0", a}, {"rock.crack.1", {{0.2, 0.50005}, {0.8, 0.50005}}}}));
 }
 
 TEST_CASE("J2 joint set: through traces are the rock's chords less its holes", "[fdem][jointset][J2]") {

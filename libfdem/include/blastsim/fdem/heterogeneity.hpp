@@ -47,6 +47,14 @@ struct StrengthHeterogeneity {
   void validate() const;
 };
 
+//! The shortest correlation length accepted, in mean joint lengths: neighbouring joints of a field 1000 times
+//! shorter than a joint are correlated by exp(-10^6), i.e. independent, which correlation_length = 0 gives exactly.
+inline constexpr double kMinCorrelationPerJoint = 1e-3;
+
+//! Throws InputError naming rock.heterogeneity.correlation_length unless it is 0 or at least
+//! kMinCorrelationPerJoint times `joint_length` [m] (the mesh's mean joint length; no check when that is not > 0).
+void check_correlation_length(const StrengthHeterogeneity& h, double joint_length);
+
 //! `count` factors of mean 1 drawn from the distribution, reproducibly: the same seed gives the same bytes on
 //! every platform (mt19937_64 bits, turned into uniforms and the inverse distribution by this code, not by
 //! the standard library's distributions, whose algorithms are unspecified).

@@ -4,10 +4,12 @@
 #pragma once
 
 #include "blastsim/fdem/joint_kernels.hpp"
+#include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/triangle_kernels.hpp"
 
 #include <array>
 #include <functional>
+#include <vector>
 
 namespace blastsim::fdem {
 
@@ -39,6 +41,20 @@ struct JointPreload {
 //! rising branch before the peak. Throws InputError when the joint cannot carry them (normal >= f_t, or |shear|
 //! >= its Mohr-Coulomb shear strength c - sigma tan(phi)).
 JointPreload joint_preload(double normal, double shear, const JointStrength& strength);
+
+//! The weight of the rock that holes took from a rock mass, put on its held boundaries. The field s is in
+//! equilibrium with gravity in the uncut rock mass, so its tractions on the whole boundary balance the weight of
+//! the rock in the model; a hole's wall is free, so the tractions it would carry (the weight of the rock cut out,
+//! and its moment) are missing from the balance, and a model held by the field's tractions alone would never come
+//! to rest. This adds that resultant, force and moment, to the held nodes' dead loads `load` [N/m per node]: the
+//! holes are the boundary's closed loops with no held edge (`held_slot`, indexed by edge slot = first node), their
+//! tractions sigma(midpoint) N taken half per node as on the held edges, and the resultant spread over the held
+//! nodes in proportion to each one's share w_n of held edge length, as f_n = w_n (A + B z x (r_n - r_c)) about the
+//! shares' centroid r_c. It adds nothing without holes; with a uniform field the holes' tractions cancel.
+//! `x0`, `y0` [m] per node, `node_vertex` the mesh vertex of each node (which joins the loops' edges).
+void carry_cut_weight(const InSituStress& s, const std::vector<BoundaryEdge>& boundary_edges,
+                      const std::vector<int>& node_vertex, const std::vector<double>& x0, const std::vector<double>& y0,
+                      const std::vector<char>& held_slot, std::vector<Vec2>& load);
 
 //! Static equilibration by viscous dynamic relaxation (RockSolver::equilibrate(); Otter 1966, Underwood 1983):
 //! explicit steps at the stable step with mass-proportional damping c = 2 omega, omega = pi c_s / (2 L) an

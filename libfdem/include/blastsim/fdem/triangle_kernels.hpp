@@ -26,6 +26,25 @@ struct Mat2 {
   BLAST_HD Mat2 transposed() const { return {a, c, b, d}; }
 };
 
+//! Squared distance [m2] from (px, py) to the segment p0 - p1.
+BLAST_HD inline double segment_distance2(const Vec2& p0, const Vec2& p1, double px, double py) {
+  const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
+  double t = len2 > 0.0 ? ((px - p0.x) * ex + (py - p0.y) * ey) / len2 : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  const double dx = px - p0.x - t * ex, dy = py - p0.y - t * ey;
+  return dx * dx + dy * dy;
+}
+
+//! Distance [m] from p to the triangle a, b, c (either orientation): 0 inside it or on its edges.
+BLAST_HD inline double distance_to_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double s0 = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+  const double s1 = (c.x - b.x) * (p.y - b.y) - (c.y - b.y) * (p.x - b.x);
+  const double s2 = (a.x - c.x) * (p.y - c.y) - (a.y - c.y) * (p.x - c.x);
+  if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return 0.0;
+  return sqrt(fmin(fmin(segment_distance2(a, b, p.x, p.y), segment_distance2(b, c, p.x, p.y)),
+                   segment_distance2(c, a, p.x, p.y)));
+}
+
 //! Edge matrix [x1 - x0, x2 - x0] (columns) of a triangle.
 BLAST_HD inline Mat2 edge_matrix(const Vec2& p0, const Vec2& p1, const Vec2& p2) {
   return {p1.x - p0.x, p2.x - p0.x, p1.y - p0.y, p2.y - p0.y};

@@ -110,14 +110,7 @@ BLAST_HD inline double expansion_work(const ChannelConserved& c, double W, doubl
   return isentropic_mean_pressure(p, U, V0, V1) * (V1 - V0);
 }
 
-//! Squared distance [m2] from (px, py) to the segment p0 - p1.
-BLAST_HD inline double segment_distance2(const fdem::Vec2& p0, const fdem::Vec2& p1, double px, double py) {
-  const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
-  double t = len2 > 0.0 ? ((px - p0.x) * ex + (py - p0.y) * ey) / len2 : 0.0;
-  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-  const double dx = px - p0.x - t * ex, dy = py - p0.y - t * ey;
-  return dx * dx + dy * dy;
-}
+using fdem::segment_distance2;  // fdem/triangle_kernels.hpp
 
 //! Smallest distance [m] between the segments p0 - p1 and q0 - q1: 0 where they cross.
 BLAST_HD inline double segments_distance(const fdem::Vec2& p0, const fdem::Vec2& p1, const fdem::Vec2& q0,

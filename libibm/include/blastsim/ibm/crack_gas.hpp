@@ -30,14 +30,18 @@ struct CrackGasOptions {
   std::optional<double> friction_factor;
   std::optional<double> roughness;  //!< [m] asperity height of the crack walls; unset: the residual aperture
   double viscosity = 5e-5;          //!< gas dynamic viscosity [Pa s] (laminar friction floor)
-  double courant = 0.4;             //!< Courant number of the channel solver's substeps
+  double courant = 0.4;             //!< Courant number of the channel solver's substeps, in [kMinCourant, 1]
+  //! The smallest Courant number accepted: the substeps of one coupled step grow as 1 / courant, and below this
+  //! a run takes more than 40 times the default's channel work for no accuracy (the scheme's error is that of its
+  //! cells, not of its step, at any Courant number below 1).
+  static constexpr double kMinCourant = 0.01;
   bool second_order = true;         //!< MUSCL-Hancock along straight chains (first order otherwise)
   //! [cells] a crack whose faces are this many grid cells apart is the grid's (its gas handed to the cells it
   //! opens); narrower ones carry their own gas and are solid to the grid (docs/coupling.md "Hand-over")
   double handover_width = kDefaultHandoverWidth;
   static constexpr double kDefaultHandoverWidth = 2.0;
   //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0, roughness > 0,
-  //! viscosity >= 0, 0 < courant <= 1 and handover_width >= 1 (all finite).
+  //! viscosity >= 0, kMinCourant <= courant <= 1 and handover_width >= 1 (all finite).
   void validate() const;
   //! The kernels' flow parameters: a constant friction factor, or Louis's law with the roughness.
   ChannelFlowParams flow() const {
@@ -99,7 +103,10 @@ class CrackGas {
   //! One step of dt [s] (no check of dt): primitives, MUSCL-Hancock faces, junction fluxes, update.
   void step(double dt);
   //! Advances by dt [s] in ceil(dt / stable_dt()) equal substeps; returns their number. InstabilityError
-  //! (describe_invalid_segment()) when a gas segment's state is not valid (segment_state_valid()).
+  //! (describe_invalid_segment()) when a gas segment's state is not valid (segment_state_valid()), or when dt
+  //! would take more than kMaxSubsteps substeps (a segment whose signal crosses it far faster than the step
+  //! allows: the run cannot go on at any useful speed).
+  static constexpr int kMaxSubsteps = 100000;
   int advance(double dt) { return advance(dt, dt); }
   //! The same, as one of the pieces of a longer `interval` [s] >= dt over which the mouths' reservoirs stay as
   //! they are: each piece draws on them at most dt / interval of what they lend over the interval

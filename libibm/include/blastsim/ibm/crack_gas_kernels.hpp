@@ -336,7 +336,8 @@ BLAST_HD inline ChannelFlux scaled(const ChannelFlux& f, double a) { return {f.m
 //!   the side of higher pressure, from that side's stagnation state, choked at M = 1), flux area = its aperture;
 //!   what leaves the cracks is added to the junction's deposit (in entry order: deterministic). The reservoir
 //!   (a grid cell) keeps its state over the channel's substeps, so what the cracks draw from it over the whole
-//!   interval is held to a quarter of the gas it holds (the nozzles' inflow scaled down together); gas that
+//!   interval is held to a quarter of the gas it holds (the nozzles scaled down together, each to a nozzle of
+//!   that fraction of its width: mass, momentum and energy alike); gas that
 //!   reaches the mouth faster than sound leaves with its own flux (no nozzle can pass more);
 //! - one gas segment, no mouth: a closed end (wall_pressure());
 //! - k >= 2 gas segments: every pair exchanges an HLLC flux through min(w_a, w_b) / (k - 1) (a straight chain:
@@ -379,10 +380,16 @@ struct JunctionFluxKernel {
         const double w = geo.aperture[end / 2];
         const ChannelPrimitive s = inward(end);
         ChannelFlux o{0, 0, 0, 0, 0};
+        double area = w;  // [m] of the end's flux
         if (r.p > s.p) {  // into the crack from the reservoir at rest
+          // Held to `scale` of its draw, the nozzle is one of width scale w: mass, momentum (its pressure term
+          // too) and energy all scale, so the gas enters at the nozzle's own state. Scaling the mass alone left
+          // the pressure's push on less gas, which then entered faster than the nozzle allows, its kinetic energy
+          // above its total below scale ~ 0.49 (a crack wider than about two cells: negative pressure, NaN).
           const NozzleFlow nf = nozzle_flow(r.rho, r.p, r.rho * r.c * r.c / r.p, s.p);
           const double h0 = (r.Edens + r.p) / r.rho, G = scale * nf.G;
-          o = {-G * w, (G * nf.u + nf.p) * w, -G * h0 * w, -G * r.Y * w, -G * r.alpha * w};
+          o = {-G * w, (G * nf.u + scale * nf.p) * w, -G * h0 * w, -G * r.Y * w, -G * r.alpha * w};
+          area = scale * w;
         } else if (!is_vacuum(s) && s.u >= s.c) {  // out of the crack at its own supersonic speed: no nozzle
           o = scaled(physical_flux(s), w);
         } else if (!is_vacuum(s)) {  // out of the crack from its stagnation state
@@ -395,7 +402,7 @@ struct JunctionFluxKernel {
           o = {0, s.p * w, 0, 0, 0};
         }
         fluxes.out[end] = o;
-        fluxes.end_area[end] = w;
+        fluxes.end_area[end] = area;
         dep.m += dt * o.m, dep.E += dt * o.E, dep.m1 += dt * o.m1, dep.am += dt * o.am;
       }
       deposits.deposit[J] = dep;
