@@ -290,7 +290,7 @@ int check_examples(bool full) {
 }
 }  // namespace
 
-TEST_CASE("Reliability: every bundled example input passes --check", "[app][reliability][examples]") {
+TEST_CASE("Reliability: every bundled example input passes --check", "[app][reliability][examples][heavy]") {
   // The examples are what a user runs first; a key renamed or a bound tightened must not leave one of them
   // refused. --check reads and validates the whole case, the rock model built (mesh, cracks, joints, strengths,
   // boundary groups, probes, charges' holes) but not relaxed, without running it. The full-size inputs

@@ -20,14 +20,20 @@ namespace {
 
 double trace_length_of(const Segment& s) { return std::hypot(s.b[0] - s.a[0], s.b[1] - s.a[1]); }
 
+//! A built rectangle [-half, half]^2 with elements of size h [m].
+MeshSpec square_box(double half, double h) {
+  MeshSpec box;
+  box.shape = MeshShape::rectangle;
+  box.min = {-half, -half}, box.max = {half, half};
+  box.element_size = h;
+  return box;
+}
+
 }  // namespace
 
 TEST_CASE("J1 joint set: the traces have the set's direction, spacing, trace length, gap and persistence",
           "[fdem][jointset][J1]") {
-  MeshSpec box;
-  box.shape = MeshShape::rectangle;
-  box.min = {-2.0, -2.0}, box.max = {2.0, 2.0};
-  box.element_size = 0.01;
+  const MeshSpec box = square_box(2.0, 0.01);
   JointSetSpec set;
   set.label = "rock.joint_set.0";
   set.angle = 30.0 * M_PI / 180;
@@ -109,10 +115,7 @@ TEST_CASE("J1 joint set: any offset places the same lines (offset modulo the spa
   // The lines n . (x - c) = offset + k spacing do not change when offset moves by whole spacings: far offsets
   // (1e17 m used to hang, 1e14 m misplaced the lines) give the traces of the offset's remainder, bit for bit (the
   // remainder is exact).
-  MeshSpec box;
-  box.shape = MeshShape::rectangle;
-  box.min = {-1.0, -1.0}, box.max = {1.0, 1.0};
-  box.element_size = 0.02;
+  const MeshSpec box = square_box(1.0, 0.02);
   JointSetSpec set;
   set.label = "rock.joint_set.0";
   set.angle = 0.4;
