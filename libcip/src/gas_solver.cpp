@@ -393,13 +393,11 @@ void mark_static_solid(GasSolver& solver, const std::function<bool(double, doubl
     }
   }
   ImmersedBoundaryView ib = solver.immersed_boundary();
-  thrust::copy(active.begin(), active.end(), thrust::device_pointer_cast(ib.cell_active.data));
-  thrust::copy(up.begin(), up.end(), thrust::device_pointer_cast(ib.u_prescribed.data));
-  thrust::copy(vp.begin(), vp.end(), thrust::device_pointer_cast(ib.v_prescribed.data));
-  thrust::fill(thrust::device, thrust::device_pointer_cast(ib.u_imposed.data),
-               thrust::device_pointer_cast(ib.u_imposed.data) + sh.size(), 0.0);
-  thrust::fill(thrust::device, thrust::device_pointer_cast(ib.v_imposed.data),
-               thrust::device_pointer_cast(ib.v_imposed.data) + sh.size(), 0.0);
+  copy_from_host(ib.cell_active, active);
+  copy_from_host(ib.u_prescribed, up);
+  copy_from_host(ib.v_prescribed, vp);
+  fill_device("cip.mask.u_imposed", ib.u_imposed, 0.0);
+  fill_device("cip.mask.v_imposed", ib.v_imposed, 0.0);
 }
 
 namespace {

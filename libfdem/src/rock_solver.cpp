@@ -9,14 +9,6 @@
 #include "blastsim/fdem/rock_step_kernels.hpp"
 #include "rock_storage.hpp"
 
-#include <thrust/binary_search.h>
-#include <thrust/copy.h>
-#include <thrust/extrema.h>
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/reduce.h>
-#include <thrust/scan.h>
-#include <thrust/sequence.h>
-#include <thrust/sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -386,8 +378,7 @@ void carry_offsets(detail::RockArrays& a, int pairs, const DeviceVector<int>& of
 
 //! The contact offset of every candidate slot's pair (-1 for all when there are no pairs).
 DeviceVector<double> slot_offsets(const detail::RockArrays& a, int pairs) {
-  const int used = a.grid.neighbour_offset.back();
-  count_host_wait();  // the host reads the lists' length
+  const int used = read_element(a.grid.neighbour_offset, static_cast<index_t>(a.grid.neighbour_offset.size()) - 1);
   DeviceVector<double> out(std::max(used, 1), -1.0);
   if (pairs > 0)
     for_each_index("fdem.grid.slot_offsets", used,
@@ -448,23 +439,18 @@ void RockSolver::rebuild_contact_grid() {
     sorted[t] = static_cast<int>(t);
   });
   // Stable sort: triangles keep index order inside a cell, so the contact sums run in a fixed order.
-  thrust::stable_sort_by_key(thrust::device, g.cell_key.begin(), g.cell_key.end(), g.sorted_triangles.begin());
+  stable_sort_by_key("fdem.grid.sort", g.cell_key, g.sorted_triangles, triangles_);
   const index_t cells = static_cast<index_t>(shape.nx) * shape.ny;
   g.cell_start.resize(cells);
   g.cell_end.resize(cells);
-  thrust::lower_bound(thrust::device, g.cell_key.begin(), g.cell_key.end(), thrust::counting_iterator<int>(0),
-                      thrust::counting_iterator<int>(static_cast<int>(cells)), g.cell_start.begin());
-  thrust::upper_bound(thrust::device, g.cell_key.begin(), g.cell_key.end(), thrust::counting_iterator<int>(0),
-                      thrust::counting_iterator<int>(static_cast<int>(cells)), g.cell_end.begin());
-  for (int k = 0; k < 3; ++k) count_host_wait();  // the sort and the two searches block
+  lower_bounds("fdem.grid.cell_start", g.cell_key, triangles_, g.cell_start, static_cast<int>(cells));
+  upper_bounds("fdem.grid.cell_end", g.cell_key, triangles_, g.cell_end, static_cast<int>(cells));
   // Candidate lists (CSR): count, scan, fill; each triangle's list in a fixed order.
   g.neighbour_offset.resize(triangles_ + 1);
   NeighbourSearchKernel search{m,       device_ptr(g.sorted_triangles), device_ptr(g.cell_start), device_ptr(g.cell_end),
                                nullptr, shape,   buffer_, device_ptr(g.neighbour_offset), nullptr};
   for_each_index("fdem.contact.count", triangles_, search);
-  thrust::exclusive_scan(thrust::device, g.neighbour_offset.begin(), g.neighbour_offset.end(), g.neighbour_offset.begin());
-  const int total = g.neighbour_offset.back();
-  count_host_wait(), count_host_wait();  // the scan blocks, the host reads its last entry
+  const int total = exclusive_scan_total("fdem.contact.scan", g.neighbour_offset);
   g.neighbour_list.resize(std::max(total, 1));
   search.offset = device_ptr(g.neighbour_offset);
   search.count = nullptr;
@@ -482,11 +468,9 @@ void RockSolver::build_contact_pairs() {
   const int* list = device_ptr(a.grid.neighbour_list);
   detail::ContactPairsArrays& p = a.pairs;
   p.pair_offset.resize(triangles_ + 1);
-  p.pair_offset[triangles_] = 0;
+  write_element(p.pair_offset, triangles_, 0);
   for_each_index("fdem.grid.pair_count", triangles_, PairCountKernel{offset, list, device_ptr(p.pair_offset)});
-  thrust::exclusive_scan(thrust::device, p.pair_offset.begin(), p.pair_offset.end(), p.pair_offset.begin());
-  const int pairs = p.pair_offset.back();
-  for (int k = 0; k < 3; ++k) count_host_wait();  // the host writes an entry, the scan blocks, the host reads one
+  const int pairs = exclusive_scan_total("fdem.grid.pair_scan", p.pair_offset);
   pairs_ = pairs;
   const index_t slots = a.grid.neighbour_list.size();
   p.slot_pair.resize(slots);
@@ -501,7 +485,7 @@ void RockSolver::build_contact_pairs() {
   if (pairs > 0)
     for_each_index("fdem.grid.pair_bond", pairs,
                    PairBondKernel{a.node_params.view(), a.edge_params.view(), device_ptr(p.pair), device_ptr(p.bond)});
-  const int used = a.grid.neighbour_offset.back();  // the list holds at least one entry even when empty
+  const int used = read_element(a.grid.neighbour_offset, triangles_);  // the list holds at least one entry even when empty
   const double unmatched = reduce_sum("fdem.grid.pair_check", used, 0.0, UnmatchedSlot{device_ptr(p.slot_pair)});
   if (unmatched > 0)
     throw std::logic_error("contact broad phase: " + std::to_string(static_cast<long>(unmatched)) +
@@ -522,21 +506,17 @@ void RockSolver::list_free_pairs() {
   a.vertex_bonded_listed = a.vertex_bonded;
   const int* bond = device_ptr(p.bond);
   a.free_pairs.resize(std::max(pairs_, 1));
-  const auto free_end = thrust::copy_if(thrust::device, thrust::counting_iterator<int>(0),
-                                        thrust::counting_iterator<int>(pairs_), a.free_pairs.begin(),
-                                        PairFree{bond, device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
-  free_pairs_ = static_cast<int>(free_end - a.free_pairs.begin());
+  free_pairs_ = static_cast<int>(select_indices("fdem.grid.free_pairs", pairs_, a.free_pairs,
+                                                PairFree{bond, device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)}));
   // Each joint's pair, and the pairs grouped by the vertex they meet at (stable: in pair order within a vertex).
   a.joint_pair.assign(std::max(joints_, 1), -1);
   DeviceVector<int> key(std::max(pairs_, 1));
   a.vertex_pairs.resize(std::max(pairs_, 1));
   for_each_index("fdem.grid.pair_groups", pairs_,
                  PairGroupKernel{bond, vertices, device_ptr(key), device_ptr(a.vertex_pairs), device_ptr(a.joint_pair)});
-  thrust::stable_sort_by_key(thrust::device, key.begin(), key.begin() + pairs_, a.vertex_pairs.begin());
+  stable_sort_by_key("fdem.grid.vertex_pairs", key, a.vertex_pairs, pairs_);
   a.vertex_pair_offset.resize(vertices + 1);
-  thrust::lower_bound(thrust::device, key.begin(), key.begin() + pairs_, thrust::counting_iterator<int>(0),
-                      thrust::counting_iterator<int>(vertices + 1), a.vertex_pair_offset.begin());
-  for (int k = 0; k < 3; ++k) count_host_wait();  // the selection (its length), the sort and the search block
+  lower_bounds("fdem.grid.vertex_pair_offset", key, pairs_, a.vertex_pair_offset, vertices + 1);
 }
 
 void RockSolver::step(double dt) {
@@ -793,7 +773,7 @@ void RockSolver::break_joints(const std::vector<int>& joints) {
 std::vector<int> RockSolver::fragment_labels() const {
   detail::RockArrays& a = *a_;
   a.label_a.resize(triangles_), a.label_b.resize(triangles_);
-  thrust::sequence(thrust::device, a.label_a.begin(), a.label_a.end());
+  fill_indices("fdem.fragments.labels", a.label_a);
   const FragmentLinks links{device_ptr(a.edge_params.neighbour), device_ptr(a.edge_params.joint), device_ptr(a.joints.broken)};
   int* in = device_ptr(a.label_a);
   int* out = device_ptr(a.label_b);

@@ -8,8 +8,6 @@
 #include "blastsim/core/error.hpp"
 #include "blastsim/ibm/crack_coupling_kernels.hpp"
 
-#include <thrust/sequence.h>
-#include <thrust/sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -113,9 +111,8 @@ void CrackGasCoupling::update_geometry(CouplingContext& ctx) {
 void CrackGasCoupling::sort_records(int records, int mouth_records) {
   for_each_index("ibm.crack.keys", records,
                  CrackDepositKeyKernel{a_->mouth_cells.read(), a_->handovers.read(), a_->order.view(), mouth_records});
-  thrust::sequence(thrust::device, a_->order.record.begin(), a_->order.record.end());
-  thrust::stable_sort_by_key(thrust::device, a_->order.key.begin(), a_->order.key.end(), a_->order.record.begin());
-  count_host_wait();  // the sequence and the sort block
+  fill_indices("ibm.crack.records", a_->order.record);
+  stable_sort_by_key("ibm.crack.sort", a_->order.key, a_->order.record, static_cast<index_t>(a_->order.key.size()));
 }
 
 void CrackGasCoupling::after_gas(CouplingContext& ctx, double dt) {

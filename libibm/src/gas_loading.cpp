@@ -6,7 +6,6 @@
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/ibm/gas_load_kernels.hpp"
 
-#include <thrust/sort.h>
 
 #include <string>
 #include <utility>
@@ -128,8 +127,7 @@ void GasLoading::after_rock(CouplingContext& ctx, double dt, int rock_substeps) 
                                   dt / rock_substeps, dt_prev_, ctx.rock.pressure_scale(), device_ptr(ew.source),
                                   device_ptr(ew.loaded), device_ptr(ew.key), device_ptr(ew.record),
                                   device_ptr(ew.work)});
-    thrust::stable_sort_by_key(thrust::device, ew.key.begin(), ew.key.end(), ew.record.begin());
-    count_host_wait();  // the sort blocks
+    stable_sort_by_key("ibm.edge_work.sort", ew.key, ew.record, slots);
     for_each_index("ibm.edge_work.charge", slots,
                    EdgeWorkChargeKernel{device_ptr(ew.key), device_ptr(ew.record), device_ptr(ew.work),
                                         static_cast<int>(slots), g.nx, g.cell_area(), ctx.gas.cells()});

@@ -26,10 +26,14 @@
 #if defined(__CUDACC__)
 #include <thrust/system/cuda/execution_policy.h>
 #endif
+#include <thrust/binary_search.h>
+#include <thrust/copy.h>
 #include <thrust/for_each.h>
 #include <thrust/functional.h>
 #include <thrust/host_vector.h>
 #include <thrust/iterator/counting_iterator.h>
+#include <thrust/scan.h>
+#include <thrust/sort.h>
 #include <thrust/transform_reduce.h>
 
 namespace blastsim {
@@ -388,6 +392,102 @@ void fill_device(const char* label, DeviceVector<T>& v, T value) {
   for_each_index(label, static_cast<index_t>(v.size()), detail::FillWith<T>{device_ptr(v), value});
 }
 
+//! Sets every element of the padded 2-D array f to value (a kernel, no wait).
+template <class T>
+void fill_device(const char* label, Field2D<T> f, T value) {
+  for_each_index(label, f.shape.size(), detail::FillWith<T>{f.data, value});
+}
+
+namespace detail {
+template <class T>
+struct IndexOf {
+  T* out;
+  BLAST_HD void operator()(index_t k) const { out[k] = static_cast<T>(k); }
+};
+}  // namespace detail
+
+//! v[k] = k for every k (a kernel, no wait).
+template <class T>
+void fill_indices(const char* label, DeviceVector<T>& v) {
+  for_each_index(label, static_cast<index_t>(v.size()), detail::IndexOf<T>{device_ptr(v)});
+}
+
+// ---- Device algorithms: labelled, timed under --profile, and counted (each launch; the host waits for each) ----
+
+//! Sorts keys[0, n) ascending and moves values[0, n) with them, equal keys in index order (a stable sort, so a
+//! sum over a sorted run is made in a fixed order whatever the backend). The host waits for it.
+template <class K, class V>
+void stable_sort_by_key(const char* label, DeviceVector<K>& keys, DeviceVector<V>& values, index_t n) {
+  ++LaunchCounts::instance().launches;
+  count_host_wait();
+  KernelProfile::instance().time(
+      label, [&] { thrust::stable_sort_by_key(thrust::device, keys.begin(), keys.begin() + n, values.begin()); });
+}
+
+//! out[c] = the first position in the sorted keys[0, n) whose key is not below c, for every value c in [0, count)
+//! (where each value's run starts). The host waits for it.
+template <class K>
+void lower_bounds(const char* label, const DeviceVector<K>& keys, index_t n, DeviceVector<int>& out, int count) {
+  ++LaunchCounts::instance().launches;
+  count_host_wait();
+  KernelProfile::instance().time(label, [&] {
+    thrust::lower_bound(thrust::device, keys.begin(), keys.begin() + n, thrust::counting_iterator<int>(0),
+                        thrust::counting_iterator<int>(count), out.begin());
+  });
+}
+
+//! out[c] = the first position in the sorted keys[0, n) whose key is above c, for every value c in [0, count)
+//! (where each value's run ends). The host waits for it.
+template <class K>
+void upper_bounds(const char* label, const DeviceVector<K>& keys, index_t n, DeviceVector<int>& out, int count) {
+  ++LaunchCounts::instance().launches;
+  count_host_wait();
+  KernelProfile::instance().time(label, [&] {
+    thrust::upper_bound(thrust::device, keys.begin(), keys.begin() + n, thrust::counting_iterator<int>(0),
+                        thrust::counting_iterator<int>(count), out.begin());
+  });
+}
+
+//! Host read of the element k of v (the host waits for it).
+template <class T>
+T read_element(const DeviceVector<T>& v, index_t k) {
+  count_host_wait();
+  return v[static_cast<std::size_t>(k)];
+}
+
+//! Host write of the element k of v (the host waits for it).
+template <class T>
+void write_element(DeviceVector<T>& v, index_t k, T value) {
+  count_host_wait();
+  v[static_cast<std::size_t>(k)] = value;
+}
+
+//! Replaces v by its exclusive prefix sums in place (v[0] = 0, v[k] = the sum of the old v[0 .. k)) and returns
+//! the last entry, which the host reads: the total of all but the old last entry (a CSR's size when that entry
+//! was 0). The host waits twice: for the scan and for the read.
+template <class T>
+T exclusive_scan_total(const char* label, DeviceVector<T>& v) {
+  ++LaunchCounts::instance().launches;
+  count_host_wait();
+  KernelProfile::instance().time(label, [&] { thrust::exclusive_scan(thrust::device, v.begin(), v.end(), v.begin()); });
+  return read_element(v, static_cast<index_t>(v.size()) - 1);
+}
+
+//! Writes the indices k in [0, n) for which keep(k) holds, ascending, into out[0 ..) (out holds at least that many)
+//! and returns their number. The host waits for it.
+template <class F>
+index_t select_indices(const char* label, index_t n, DeviceVector<int>& out, F keep) {
+  ++LaunchCounts::instance().launches;
+  count_host_wait();
+  index_t selected = 0;
+  KernelProfile::instance().time(label, [&] {
+    const auto end = thrust::copy_if(thrust::device, thrust::counting_iterator<int>(0),
+                                     thrust::counting_iterator<int>(static_cast<int>(n)), out.begin(), keep);
+    selected = static_cast<index_t>(end - out.begin());
+  });
+  return selected;
+}
+
 //! Explicit copy to host memory (the only way host code reads device data; the host waits for it).
 template <class T>
 std::vector<T> to_host(const DeviceVector<T>& v) {
@@ -402,6 +502,13 @@ template <class T>
 void copy_from_host(DeviceVector<T>& v, const std::vector<T>& host) {
   v.resize(host.size());
   if (!host.empty()) thrust::copy(host.begin(), host.end(), v.begin());
+}
+
+//! Explicit copy from host memory into the padded 2-D array f (host holds f.shape.size() values).
+template <class T>
+void copy_from_host(Field2D<T> f, const std::vector<T>& host) {
+  assert(static_cast<index_t>(host.size()) == f.shape.size());
+  if (!host.empty()) thrust::copy(host.begin(), host.end(), thrust::device_pointer_cast(f.data));
 }
 
 }  // namespace blastsim
