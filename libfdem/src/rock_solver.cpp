@@ -170,24 +170,9 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.broken.assign(joints_, 0);
   a.joint_tangent.assign(joints_, Vec2{0.0, 0.0});
-  // Joints per mesh vertex (CSR): each joint touches the two vertices of its edge (its ends 2 j and 2 j + 1).
-  const int vertices = nodes > 0 ? *std::max_element(vertex.begin(), vertex.end()) + 1 : 0;
-  std::vector<int> end_vertex(2 * static_cast<std::size_t>(joints_));
-  for (int j = 0; j < joints_; ++j) end_vertex[2 * j] = vertex[topo.joints[j].a0], end_vertex[2 * j + 1] = vertex[topo.joints[j].a1];
-  HostCsr at_vertex = group_by_key(end_vertex, vertices);
-  for (int& e : at_vertex.entry) e /= 2;  // the end's joint
-  const std::vector<int>& vertex_offset = at_vertex.offset;
-  copy_from_host(a.vertex_joint_offset, vertex_offset);
-  copy_from_host(a.vertex_joints, at_vertex.entry.empty() ? std::vector<int>{0} : at_vertex.entry);
-  // Bonded: at least one joint there, none broken yet (a vertex without joints bonds nothing).
-  std::vector<std::uint8_t> bonded(std::max(vertices, 1), 0);
-  for (int v = 0; v < vertices; ++v) bonded[v] = vertex_offset[v + 1] > vertex_offset[v] ? 1 : 0;
-  copy_from_host(a.vertex_bonded, bonded);
-  a.grid.sorted_triangles.assign(triangles_, 0), a.grid.cell_key.assign(triangles_, 0);
-  a.grid.cell_start.assign(1, 0), a.grid.cell_end.assign(1, 0);
-  a.grid.neighbour_offset.assign(triangles_ + 1, 0), a.grid.neighbour_list.assign(1, 0);
   a.speed2_peak.assign(3 * triangles_, 0.0);
-  a.travel.assign(triangles_, 0.0);
+  contact_ = std::make_unique<ContactSearch>(triangles_, vertex, joint_nodes_host_, options_.contact_buffer,
+                                             options_.contact);
   if (options_.contact) rebuild_contact_grid();
 }
 
@@ -365,159 +350,18 @@ EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
   return r;
 }
 
-namespace {
-//! Sets each pair's contact offset from the slot that held it in the candidate lists (offset, list),
-//! -1 where the pair was no candidate there.
-void carry_offsets(detail::RockArrays& a, int pairs, const DeviceVector<int>& offset, const DeviceVector<int>& list,
-                   const DeviceVector<double>& slot_offset) {
-  if (pairs > 0)
-    for_each_index("fdem.grid.carry_offsets", pairs,
-                   CarryOffsetKernel{device_ptr(a.pairs.pair), device_ptr(offset), device_ptr(list),
-                                     device_ptr(slot_offset), device_ptr(a.pairs.offset)});
-}
-
-//! The contact offset of every candidate slot's pair (-1 for all when there are no pairs).
-DeviceVector<double> slot_offsets(const detail::RockArrays& a, int pairs) {
-  const int used = read_element(a.grid.neighbour_offset, static_cast<index_t>(a.grid.neighbour_offset.size()) - 1);
-  DeviceVector<double> out(std::max(used, 1), -1.0);
-  if (pairs > 0)
-    for_each_index("fdem.grid.slot_offsets", used,
-                   SlotOffsetKernel{device_ptr(a.pairs.slot_pair), device_ptr(a.pairs.offset), device_ptr(out)});
-  return out;
-}
-}  // namespace
-
 RockSolver::~RockSolver() = default;
 RockSolver::RockSolver(RockSolver&&) noexcept = default;
 RockSolver& RockSolver::operator=(RockSolver&&) noexcept = default;
 
-void RockSolver::rebuild_contact_grid() {
-  detail::RockArrays& a = *a_;
-  // The pairs' contact offsets outlive the lists: kept per slot of the old lists, carried to the new pairs.
-  const bool carry = pairs_ > 0;
-  DeviceVector<int> old_offset, old_list;
-  DeviceVector<double> old_slot_offset;
-  if (carry) {
-    old_slot_offset = slot_offsets(a, pairs_);
-    old_offset = a.grid.neighbour_offset, old_list = a.grid.neighbour_list;
-  }
-  const NodeMotion<Access::read> m = a.nodes.read();
-  const index_t n = node_count();
-  const double* xs = m.x;
-  const double* ys = m.y;
-  const double xmax = reduce_max("fdem.grid.xmax", n, -1e300, [=] BLAST_HD(index_t k) { return xs[k]; });
-  const double ymax = reduce_max("fdem.grid.ymax", n, -1e300, [=] BLAST_HD(index_t k) { return ys[k]; });
-  const double xmin = -reduce_max("fdem.grid.xmin", n, -1e300, [=] BLAST_HD(index_t k) { return -xs[k]; });
-  const double ymin = -reduce_max("fdem.grid.ymin", n, -1e300, [=] BLAST_HD(index_t k) { return -ys[k]; });
-  // Largest distance from a triangle's centroid to its vertices.
-  const double r_max = reduce_max("fdem.grid.rmax", triangles_, 0.0, [=] BLAST_HD(index_t t) {
-    const Vec2 c = triangle_centroid(m, static_cast<int>(t));
-    double d = 0;
-    for (int k = 0; k < 3; ++k) d = fmax(d, hypot(xs[3 * t + k] - c.x, ys[3 * t + k] - c.y));
-    return d;
-  });
-  if (!std::isfinite(xmin + xmax + ymin + ymax + r_max))
-    throw InstabilityError("rock node positions are not finite at step " + std::to_string(steps_));
-  if (buffer_ == 0) buffer_ = options_.contact_buffer * 2 * r_max;
-  // Two triangles that touch have centroids within 2 r_max; each may drift buffer/2 before the next build.
-  cell_size_ = 2 * r_max + buffer_;
-  const double cap = std::max(4.0 * triangles_, 1024.0);  // keep the cell array in proportion to the mesh
-  while (((xmax - xmin) / cell_size_ + 3) * ((ymax - ymin) / cell_size_ + 3) > cap) cell_size_ *= 2;
-  grid_x0_ = xmin - cell_size_;
-  grid_y0_ = ymin - cell_size_;
-  grid_nx_ = static_cast<int>((xmax - grid_x0_) / cell_size_) + 2;
-  grid_ny_ = static_cast<int>((ymax - grid_y0_) / cell_size_) + 2;
-  const ContactGridShape shape{cell_size_, grid_x0_, grid_y0_, grid_nx_, grid_ny_};
-  detail::ContactGridArrays& g = a.grid;
-  int* key = device_ptr(g.cell_key);
-  int* sorted = device_ptr(g.sorted_triangles);
-  for_each_index("fdem.grid.keys", triangles_, [=] BLAST_HD(index_t t) {
-    const Vec2 c = triangle_centroid(m, static_cast<int>(t));
-    int i, j;
-    shape.cell_of(c.x, c.y, i, j);
-    key[t] = j * shape.nx + i;
-    sorted[t] = static_cast<int>(t);
-  });
-  // Stable sort: triangles keep index order inside a cell, so the contact sums run in a fixed order.
-  stable_sort_by_key("fdem.grid.sort", g.cell_key, g.sorted_triangles, triangles_);
-  const index_t cells = static_cast<index_t>(shape.nx) * shape.ny;
-  g.cell_start.resize(cells);
-  g.cell_end.resize(cells);
-  lower_bounds("fdem.grid.cell_start", g.cell_key, triangles_, g.cell_start, static_cast<int>(cells));
-  upper_bounds("fdem.grid.cell_end", g.cell_key, triangles_, g.cell_end, static_cast<int>(cells));
-  // Candidate lists (CSR): count, scan, fill; each triangle's list in a fixed order.
-  g.neighbour_offset.resize(triangles_ + 1);
-  NeighbourSearchKernel search{m,       device_ptr(g.sorted_triangles), device_ptr(g.cell_start), device_ptr(g.cell_end),
-                               nullptr, shape,   buffer_, device_ptr(g.neighbour_offset), nullptr};
-  for_each_index("fdem.contact.count", triangles_, search);
-  const int total = exclusive_scan_total("fdem.contact.scan", g.neighbour_offset);
-  g.neighbour_list.resize(std::max(total, 1));
-  search.offset = device_ptr(g.neighbour_offset);
-  search.count = nullptr;
-  search.list = device_ptr(g.neighbour_list);
-  for_each_index("fdem.contact.fill", triangles_, search);
-  build_contact_pairs();
-  if (carry) carry_offsets(a, pairs_, old_offset, old_list, old_slot_offset);
-  travel_since_build_ = 0;
-  ++rebuilds_;
+ContactRock RockSolver::contact_rock() const {
+  const detail::RockArrays& a = *a_;
+  return {a.nodes.read(), a.node_params.view(), a.edge_params.view(), a.joints.read()};
 }
 
-void RockSolver::build_contact_pairs() {
-  detail::RockArrays& a = *a_;
-  const int* offset = device_ptr(a.grid.neighbour_offset);
-  const int* list = device_ptr(a.grid.neighbour_list);
-  detail::ContactPairsArrays& p = a.pairs;
-  p.pair_offset.resize(triangles_ + 1);
-  write_element(p.pair_offset, triangles_, 0);
-  for_each_index("fdem.grid.pair_count", triangles_, PairCountKernel{offset, list, device_ptr(p.pair_offset)});
-  const int pairs = exclusive_scan_total("fdem.grid.pair_scan", p.pair_offset);
-  pairs_ = pairs;
-  const index_t slots = a.grid.neighbour_list.size();
-  p.slot_pair.resize(slots);
-  p.pair.resize(std::max(pairs, 1));
-  p.touch.assign(std::max(pairs, 1), 0);  // a pair contact never evaluates (held together) never touches
-  p.load.resize(std::max(pairs, 1));
-  p.offset.assign(std::max(pairs, 1), -1.0);  // none yet; a rebuild carries the old ones over
-  p.reach.assign(std::max(pairs, 1), -1.0);   // every pair is tested at its first step
-  p.bond.resize(std::max(pairs, 1));
-  for_each_index("fdem.grid.pair_index", triangles_,
-                 PairIndexKernel{offset, list, device_ptr(p.pair_offset), device_ptr(p.slot_pair), device_ptr(p.pair)});
-  if (pairs > 0)
-    for_each_index("fdem.grid.pair_bond", pairs,
-                   PairBondKernel{a.node_params.view(), a.edge_params.view(), device_ptr(p.pair), device_ptr(p.bond)});
-  const int used = read_element(a.grid.neighbour_offset, triangles_);  // the list holds at least one entry even when empty
-  const double unmatched = reduce_sum("fdem.grid.pair_check", used, 0.0, UnmatchedSlot{device_ptr(p.slot_pair)});
-  if (unmatched > 0)
-    throw std::logic_error("contact broad phase: " + std::to_string(static_cast<long>(unmatched)) +
-                           " candidate slots have no partner slot (the candidate lists must be symmetric)");
-  list_free_pairs();
-}
+void RockSolver::rebuild_contact_grid() { contact_->rebuild(contact_rock(), steps_); }
 
-// Most candidate pairs of an intact mesh are held together by a joint or at a bonded vertex (about five in six
-// in the single-hole example) and never need a contact test. Contact evaluates the pairs free when the lists
-// are made, and those a joint's break has released since (ReleasedPairsKernel); a pair released is never held
-// again, so no list has to shrink between builds.
-void RockSolver::list_free_pairs() {
-  detail::RockArrays& a = *a_;
-  const detail::ContactPairsArrays& p = a.pairs;
-  const int vertices = static_cast<int>(a.vertex_joint_offset.size()) - 1;
-  update_vertex_bonds();  // the bonds as the joints now stand (a restart or break_joints() may have changed them)
-  a.joint_broken_listed = a.joints.broken;
-  a.vertex_bonded_listed = a.vertex_bonded;
-  const int* bond = device_ptr(p.bond);
-  a.free_pairs.resize(std::max(pairs_, 1));
-  free_pairs_ = static_cast<int>(select_indices("fdem.grid.free_pairs", pairs_, a.free_pairs,
-                                                PairFree{bond, device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)}));
-  // Each joint's pair, and the pairs grouped by the vertex they meet at (stable: in pair order within a vertex).
-  a.joint_pair.assign(std::max(joints_, 1), -1);
-  DeviceVector<int> key(std::max(pairs_, 1));
-  a.vertex_pairs.resize(std::max(pairs_, 1));
-  for_each_index("fdem.grid.pair_groups", pairs_,
-                 PairGroupKernel{bond, vertices, device_ptr(key), device_ptr(a.vertex_pairs), device_ptr(a.joint_pair)});
-  stable_sort_by_key("fdem.grid.vertex_pairs", key, a.vertex_pairs, pairs_);
-  a.vertex_pair_offset.resize(vertices + 1);
-  lower_bounds("fdem.grid.vertex_pair_offset", key, pairs_, a.vertex_pair_offset, vertices + 1);
-}
+long RockSolver::contact_rebuilds() const { return contact_->rebuilds(); }
 
 void RockSolver::step(double dt) {
   advance(dt, 1);
@@ -537,7 +381,7 @@ void RockSolver::advance(double dt, int substeps, const std::function<void(int)>
   }
   // The travel is known up to the last read; the substeps after the first are covered by the last speed.
   const double ahead = last_speed_ * dt * (substeps - 1);
-  if (options_.contact && 2 * (travel_since_build_ + ahead) > buffer_) rebuild_contact_grid();
+  if (contact_->rebuild_due(ahead)) rebuild_contact_grid();
   for (int k = 0; k < substeps; ++k) {
     if (before_step) before_step(k);
     triangle_forces(dt);
@@ -581,7 +425,7 @@ void RockSolver::finish_motion(double v_max) {
     throw InstabilityError("rock velocity not finite at step " + std::to_string(steps_) + " (t = " + when.str() +
                            " s), node " + std::to_string(bad) + " of triangle " + std::to_string(bad / 3) + where.str());
   }
-  travel_since_build_ += v_max * advanced;
+  contact_->moved(v_max * advanced);
   last_speed_ = v_max;
 }
 
@@ -591,7 +435,7 @@ void RockSolver::triangle_forces(double dt) {
   for_each_index("fdem.triangles", triangles_,
                  TriangleForceKernel{a.nodes.read(), a.triangle_params.view(), a.edges.read(), a.edge_loads.read(), a.forces.view(),
                                      a.triangles.view(), material_.lame_lambda(), material_.shear_modulus(),
-                                     pressure_scale_, dt, options_.contact ? device_ptr(a.travel) : nullptr, dt_prev_});
+                                     pressure_scale_, dt, contact_->travel(), options_.contact, dt_prev_});
 }
 
 // Munjiza 2004 ch. 7: cohesive joints, in two passes (the geometry, then the joint law and the forces).
@@ -604,51 +448,11 @@ void RockSolver::joint_forces() {
                  JointForceKernel{a.joint_params.view(), a.joints.view(), a.edges.view(), device_ptr(a.joint_tangent)});
 }
 
-void RockSolver::update_vertex_bonds() {
-  detail::RockArrays& a = *a_;
-  if (joints_ > 0)
-    for_each_index("fdem.vertex_bonds", static_cast<index_t>(a.vertex_joint_offset.size() - 1),
-                   VertexBondKernel{device_ptr(a.vertex_joint_offset), device_ptr(a.vertex_joints),
-                                    device_ptr(a.joints.broken), device_ptr(a.vertex_bonded)});
-}
-
-// Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction. Each pair once (one thread a
-// pair), then each triangle gathers its side of its pairs.
+// Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction (ContactSearch).
 void RockSolver::contact_forces(double dt) {
-  if (!options_.contact) return;
   detail::RockArrays& a = *a_;
-  const double penalty = options_.contact_penalty_factor * material_.youngs_modulus;
-  update_vertex_bonds();  // the joints of this step included
-  const ContactPairKernel pair{a.nodes.read(),
-                               a.node_params.view(),
-                               device_ptr(a.joints.broken),
-                               device_ptr(a.vertex_bonded),
-                               device_ptr(a.pairs.pair),
-                               device_ptr(a.pairs.bond),
-                               device_ptr(a.pairs.touch),
-                               device_ptr(a.pairs.load),
-                               device_ptr(a.pairs.offset),
-                               device_ptr(a.pairs.reach),
-                               device_ptr(a.travel),
-                               penalty,
-                               material_.contact_friction,
-                               dt};
-  // The free pairs (list_free_pairs), then those released since the lists were made, each in interleaved chunks:
-  // the pairs that need work bunch up in index space (around the hole and the cracks; the other free pairs are
-  // skipped on their travel budgets), and each host thread takes one contiguous run of launch indices.
-  const auto listed = Interleaved<ListedPairs>::over(ListedPairs{pair, device_ptr(a.free_pairs)}, free_pairs_);
-  for_each_index("fdem.contact.pairs", listed.launch_size(), listed);
-  if (joints_ > 0) {
-    const ReleasedPairsKernel rk{pair, device_ptr(a.joint_broken_listed), device_ptr(a.vertex_bonded_listed),
-                                 device_ptr(a.joint_pair), device_ptr(a.vertex_pair_offset), device_ptr(a.vertex_pairs),
-                                 joints_};
-    const index_t n = joints_ + static_cast<index_t>(a.vertex_joint_offset.size() - 1);
-    const auto released = Interleaved<ReleasedPairsKernel>::over(rk, n);
-    for_each_index("fdem.contact.released", released.launch_size(), released);
-  }
-  for_each_index("fdem.contact.gather", triangles_,
-                 ContactGatherKernel{device_ptr(a.grid.neighbour_offset), a.pairs.read(), a.forces.view(),
-                                     a.triangles.view(), dt});
+  contact_->forces(contact_rock(), a.forces.view(), a.triangles.view(),
+                   options_.contact_penalty_factor * material_.youngs_modulus, material_.contact_friction, dt);
 }
 
 // Symplectic Euler (docs/fdem-solver.md): gather the node's forces, integrate.
@@ -721,13 +525,11 @@ void RockSolver::set_velocities(const std::vector<double>& vxy) {
   reset_contact_budgets();
 }
 
-void RockSolver::reset_contact_budgets() {
-  if (pairs_ > 0) fill_device("fdem.contact.budgets", a_->pairs.reach, -1.0);
-}
+void RockSolver::reset_contact_budgets() { contact_->reset_budgets(); }
 
 void RockSolver::set_positions(const std::vector<double>& xy) {
   copy_node_pairs(xy, node_count(), a_->nodes.x, a_->nodes.y, "set_positions");
-  travel_since_build_ = buffer_;  // the nodes jumped: the contact broad phase is rebuilt before the next step
+  contact_->jumped();  // the contact broad phase is rebuilt before the next step
 }
 
 void RockSolver::set_edge_pressure(const std::vector<int>& slots, double pressure) {
@@ -955,26 +757,9 @@ void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   w.value("rock.last_speed", last_speed_);
   if (joint_stored_initial_ != 0) w.value("rock.joint_stored_initial", joint_stored_initial_);
   w.value("rock.steps", steps_);
-  w.value("rock.contact.rebuilds", rebuilds_);
-  w.value("rock.contact.cell_size", cell_size_);
-  w.value("rock.contact.origin", std::array<double, 2>{grid_x0_, grid_y0_});
-  w.value("rock.contact.cells", std::array<int, 2>{grid_nx_, grid_ny_});
-  w.value("rock.contact.buffer", buffer_);
-  w.value("rock.contact.travel", travel_since_build_);
-  if (options_.contact) write_array(w, "rock.contact.slot_offset", slot_offsets(*a_, pairs_));
+  contact_->write_checkpoint(w);
   write_array(w, "rock.probes.peak", a_->probe_peak);
 }
-
-namespace {
-//! Refuses a restored array whose values leave [lo, hi] (indices, flags), naming the record.
-template <class T>
-void check_range(const CheckpointReader& r, const std::string& name, const std::vector<T>& v, double lo, double hi) {
-  for (size_t k = 0; k < v.size(); ++k)
-    if (!(static_cast<double>(v[k]) >= lo && static_cast<double>(v[k]) <= hi))
-      r.fail(name, "entry " + std::to_string(k) + " = " + std::to_string(static_cast<double>(v[k])) + " outside [" +
-                       std::to_string(lo) + ", " + std::to_string(hi) + "]");
-}
-}  // namespace
 
 void RockSolver::read_checkpoint(CheckpointReader& r) {
   const std::array<int, 2> counts = r.value<std::array<int, 2>>("rock.counts");
@@ -988,33 +773,14 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
     if (name == "rock.joints.plastic" && !r.has(name)) return;
     read_array(r, name, v, fixed ? v.size() : 0);
   });
-  // Each scalar by name: finite, and non-negative but for the contact grid's origin.
-  auto scalar = [&](const char* name) {
-    const double v = r.value<double>(name);
-    if (!std::isfinite(v) || v < 0) r.fail(name, "not a finite value >= 0");
-    return v;
-  };
-  time_ = scalar("rock.time");
-  pressure_scale_ = scalar("rock.pressure_scale");
-  dt_prev_ = scalar("rock.previous_dt");
-  if (scalar("rock.stable_dt") != stable_dt_) r.fail("rock.stable_dt", "differs from this mesh's (another mesh?)");
-  last_speed_ = scalar("rock.last_speed");
-  joint_stored_initial_ = r.has("rock.joint_stored_initial") ? scalar("rock.joint_stored_initial") : 0.0;
-  cell_size_ = scalar("rock.contact.cell_size");
-  buffer_ = scalar("rock.contact.buffer");
-  travel_since_build_ = scalar("rock.contact.travel");
-  const std::array<double, 2> origin = r.value<std::array<double, 2>>("rock.contact.origin");
-  if (!std::isfinite(origin[0]) || !std::isfinite(origin[1])) r.fail("rock.contact.origin", "not finite");
-  grid_x0_ = origin[0], grid_y0_ = origin[1];
+  time_ = r.non_negative("rock.time");
+  pressure_scale_ = r.non_negative("rock.pressure_scale");
+  dt_prev_ = r.non_negative("rock.previous_dt");
+  if (r.non_negative("rock.stable_dt") != stable_dt_) r.fail("rock.stable_dt", "differs from this mesh's (another mesh?)");
+  last_speed_ = r.non_negative("rock.last_speed");
+  joint_stored_initial_ = r.has("rock.joint_stored_initial") ? r.non_negative("rock.joint_stored_initial") : 0.0;
   steps_ = r.value<long>("rock.steps");
-  rebuilds_ = r.value<long>("rock.contact.rebuilds");
   if (steps_ < 0 || steps_ > kMaxCheckpointSteps) r.fail("rock.steps", "negative or above 1e15");
-  if (rebuilds_ < 0 || rebuilds_ > steps_ + 1) r.fail("rock.contact.rebuilds", "negative or more than the rock's steps");
-  const std::array<int, 2> cells = r.value<std::array<int, 2>>("rock.contact.cells");
-  const int min_cells = options_.contact ? 1 : 0;  // without contact no grid is ever built
-  for (const int n : cells)
-    if (n < min_cells || n > (1 << 20)) r.fail("rock.contact.cells", "contact grid size out of range");
-  grid_nx_ = cells[0], grid_ny_ = cells[1];
   read_array(r, "rock.probes.peak", a_->probe_peak);  // set_probes() came first, as when it was written
   if (a_->probe_peak.size() != static_cast<size_t>(probes_))
     r.fail("rock.probes.peak", "holds " + std::to_string(a_->probe_peak.size()) + " probes, this case has " +
@@ -1024,54 +790,22 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
       r.fail("rock.probes.peak", "a peak is not finite or negative");
   // Every index and flag against what it addresses, before any kernel reads it.
   const detail::RockArrays& a = *a_;
-  const double T = triangles_;
-  check_range(r, "rock.node_loads.constraint", to_host(a.node_loads.constraint), 0,
+  r.check_range("rock.node_loads.constraint", to_host(a.node_loads.constraint), 0,
               kPrescribedX | kPrescribedY | kViscousBoundary | kHeldLoad);
-  check_range(r, "rock.edges.exposed", to_host(a.edges.exposed), 0, 2);
-  check_range(r, "rock.joints.broken", to_host(a.joints.broken), 0, 1);
+  r.check_range("rock.edges.exposed", to_host(a.edges.exposed), 0, 2);
+  r.check_range("rock.joints.broken", to_host(a.joints.broken), 0, 1);
   std::vector<double> damage;
   for (const JointPointDamage& jd : to_host(a.joints.damage)) damage.insert(damage.end(), jd.point, jd.point + kJointPoints);
-  check_range(r, "rock.joints.damage", damage, 0, 1);
+  r.check_range("rock.joints.damage", damage, 0, 1);
   std::vector<double> slip, path;
   for (const JointPointPlastic& jp : to_host(a.joints.plastic)) {
     slip.insert(slip.end(), jp.slip, jp.slip + kJointPoints);
     path.insert(path.end(), jp.path, jp.path + kJointPoints);
   }
   const double huge = std::numeric_limits<double>::max();
-  check_range(r, "rock.joints.plastic", slip, -huge, huge);
-  check_range(r, "rock.joints.plastic", path, 0, huge);
-  if (options_.contact) {
-    const detail::ContactGridArrays& g = a.grid;
-    const double cells = static_cast<double>(grid_nx_) * grid_ny_;
-    if (g.cell_key.size() != static_cast<size_t>(triangles_) || g.sorted_triangles.size() != static_cast<size_t>(triangles_))
-      r.fail("rock.grid.cell_key", "its size is not the triangle count");
-    if (static_cast<double>(g.cell_start.size()) != cells || static_cast<double>(g.cell_end.size()) != cells)
-      r.fail("rock.grid.cell_start", "its size is not the contact grid's cell count");
-    check_range(r, "rock.grid.cell_key", to_host(g.cell_key), 0, cells - 1);
-    check_range(r, "rock.grid.sorted_triangles", to_host(g.sorted_triangles), 0, T - 1);
-    const std::vector<int> start = to_host(g.cell_start), end = to_host(g.cell_end);
-    check_range(r, "rock.grid.cell_start", start, 0, T);
-    check_range(r, "rock.grid.cell_end", end, 0, T);
-    for (size_t c = 0; c < start.size(); ++c)
-      if (start[c] > end[c]) r.fail("rock.grid.cell_start", "cell " + std::to_string(c) + " starts after it ends");
-    const std::vector<int> offset = to_host(g.neighbour_offset);
-    if (offset.size() != static_cast<size_t>(triangles_) + 1 || offset[0] != 0)
-      r.fail("rock.grid.neighbour_offset", "not an offset array of the triangles");
-    for (size_t t = 1; t < offset.size(); ++t)
-      if (offset[t] < offset[t - 1]) r.fail("rock.grid.neighbour_offset", "decreases at " + std::to_string(t));
-    if (static_cast<size_t>(offset.back()) > g.neighbour_list.size())
-      r.fail("rock.grid.neighbour_offset", "addresses past the candidate list");
-    check_range(r, "rock.grid.neighbour_list", to_host(g.neighbour_list), 0, T - 1);
-    try {
-      build_contact_pairs();
-    } catch (const std::logic_error& e) {
-      r.fail("rock.grid.neighbour_list", e.what());
-    }
-    DeviceVector<double> slot_offset;
-    read_array(r, "rock.contact.slot_offset", slot_offset, g.neighbour_list.size());
-    check_range(r, "rock.contact.slot_offset", to_host(slot_offset), -1, 1);
-    carry_offsets(*a_, pairs_, g.neighbour_offset, g.neighbour_list, slot_offset);
-  }
+  r.check_range("rock.joints.plastic", slip, -huge, huge);
+  r.check_range("rock.joints.plastic", path, 0, huge);
+  contact_->read_checkpoint(r, contact_rock(), steps_);
 }
 
 }  // namespace blastsim::fdem

@@ -23,8 +23,6 @@ BLASTSIM_STATE_STORAGE(TriangleState, BLASTSIM_ROCK_TRIANGLE_STATE)
 BLASTSIM_STATE_STORAGE(EdgeState, BLASTSIM_ROCK_EDGE_STATE)
 BLASTSIM_STATE_STORAGE(EdgeLoads, BLASTSIM_ROCK_EDGE_LOADS)
 BLASTSIM_STATE_STORAGE(JointState, BLASTSIM_ROCK_JOINT_STATE)
-BLASTSIM_STATE_STORAGE(ContactGrid, BLASTSIM_ROCK_CONTACT_GRID)
-BLASTSIM_STATE_STORAGE(ContactPairs, BLASTSIM_ROCK_CONTACT_PAIRS)
 
 //! All arrays of one RockSolver.
 struct RockArrays {
@@ -43,19 +41,6 @@ struct RockArrays {
   TriangleStateArrays triangles;
   EdgeStateArrays edges;
   JointStateArrays joints;
-  // contact broad phase (checkpointed) and its pairs (derived)
-  ContactGridArrays grid;
-  ContactPairsArrays pairs;
-  // mesh vertices: the joints that touch each (CSR, fixed) and whether all of them are intact (derived from
-  // joints.broken each step, not checkpointed); contact skips the pairs that meet at a bonded vertex
-  DeviceVector<int> vertex_joint_offset, vertex_joints;
-  DeviceVector<std::uint8_t> vertex_bonded;
-  // Contact work lists (derived from the pairs, remade with them): the pairs that no intact joint or bonded
-  // vertex held when the lists were made (`free_pairs`), the joints' and vertices' state then (`*_listed`), each
-  // joint's pair (-1: none), the pairs that meet at each mesh vertex (CSR); contact evaluates the free pairs and
-  // those released since (RockSolver::contact_forces)
-  DeviceVector<int> free_pairs, joint_pair, vertex_pair_offset, vertex_pairs;
-  DeviceVector<std::uint8_t> joint_broken_listed, vertex_bonded_listed;
   // per joint: the unit tangent of its faces in the current substep (JointGeometryKernel, read by
   // JointForceKernel); not checkpointed
   DeviceVector<Vec2> joint_tangent;
@@ -66,15 +51,12 @@ struct RockArrays {
   // square of the largest speed of each node since the last finish_motion() [m2/s2]; zero between steps, not
   // checkpointed
   DeviceVector<double> speed2_peak;
-  // per triangle: a bound on how far its nodes moved since the solver was made or restarted [m] (TriangleForceKernel;
-  // contact's travel budgets, ContactPairsArrays::reach), not checkpointed: a restart makes the pairs anew
-  DeviceVector<double> travel;
   // work arrays of fragment_labels() (two label buffers), sized on first use
   DeviceVector<int> label_a, label_b;
 
-  //! Calls fn(record name, array, fixed size) for every array a checkpoint holds: the loads and the state,
-  //! not the params (the restarted solver builds them from the same mesh and material) nor the derived contact
-  //! pairs; `fixed size` is false for the contact grid's arrays, whose sizes change with each rebuild.
+  //! Calls fn(record name, array, fixed size) for every array a checkpoint holds: the loads and the state, not the
+  //! params (the restarted solver builds them from the same mesh and material); contact writes its own
+  //! (ContactSearch). Every size is fixed by the mesh.
   //! Self is RockArrays or const RockArrays.
   template <class Self, class Fn>
   static void for_each_checkpoint_array(Self& a, Fn&& fn) {
@@ -89,7 +71,6 @@ struct RockArrays {
     group(a.triangles, "rock.triangles.", true);
     group(a.edges, "rock.edges.", true);
     group(a.joints, "rock.joints.", true);
-    group(a.grid, "rock.grid.", false);
   }
 };
 

@@ -206,6 +206,13 @@ class CheckpointReader {
     if (v.size() != 1) fail(name, "holds " + std::to_string(v.size()) + " values, expected one");
     return v[0];
   }
+  //! The scalar record `name`, refused (naming it) unless it is finite and not negative (a time, a length, a scale).
+  double non_negative(const std::string& name) {
+    const double v = value<double>(name);
+    if (!std::isfinite(v) || v < 0) fail(name, "not a finite value >= 0");
+    return v;
+  }
+
   //! host_array(), and InputError unless it holds `expected` values (when not 0).
   template <class T>
   std::vector<T> host_array(const std::string& name, std::size_t expected) {
@@ -235,6 +242,15 @@ class CheckpointReader {
   //! InputError naming the file and the record.
   [[noreturn]] void fail(const std::string& name, const std::string& what) const {
     throw InputError("checkpoint " + path_ + ", record '" + name + "': " + what);
+  }
+  //! fail() naming the record unless every value of v (indices, flags read back from record `name`) lies in
+  //! [lo, hi].
+  template <class T>
+  void check_range(const std::string& name, const std::vector<T>& v, double lo, double hi) const {
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (!(static_cast<double>(v[k]) >= lo && static_cast<double>(v[k]) <= hi))
+        fail(name, "entry " + std::to_string(k) + " = " + std::to_string(static_cast<double>(v[k])) + " outside [" +
+                       std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   const std::string& path() const { return path_; }
 

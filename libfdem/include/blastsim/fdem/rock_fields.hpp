@@ -145,25 +145,6 @@ struct PairLoad {
   X(JointPointValues, traction, "normal and shear traction at the three points [Pa]") \
   X(std::uint8_t, broken, "1 once two of its three points reached damage 1")
 
-// ---- contact broad phase (rebuilt from the positions; checkpointed so a restart keeps the same lists) ----
-#define BLASTSIM_ROCK_CONTACT_GRID(X)                                              \
-  X(int, cell_key, "grid cell of each triangle's centroid")                        \
-  X(int, sorted_triangles, "triangles sorted by cell (stable: index order inside a cell)") \
-  X(int, cell_start, "first entry of each cell in sorted_triangles")               \
-  X(int, cell_end, "one past its last entry")                                      \
-  X(int, neighbour_offset, "per triangle (+1): start of its candidate list (CSR)") \
-  X(int, neighbour_list, "contact candidates within the buffer")
-// ---- contact pairs: each candidate pair once, derived from the lists (only `offset` is checkpointed) ------
-#define BLASTSIM_ROCK_CONTACT_PAIRS(X)                                    \
-  X(int, pair_offset, "per triangle (+1): first pair it leads")           \
-  X(int, slot_pair, "per candidate slot: its pair")                       \
-  X(TrianglePair, pair, "the pair's triangles, i < j")                    \
-  X(int, bond, "what holds the pair while intact: its joint (>= 0), -2 - v for one common mesh vertex v, or -1") \
-  X(std::uint8_t, touch, "1 when the pair touched in this step")          \
-  X(PairLoad, load, "the pair's loads, valid when touching")             \
-  X(double, offset, "pairs meeting at one mesh vertex: contact offset s (-1: bonded, or none yet; checkpointed per slot)") \
-  X(double, reach, "travel budget [m]: the pair stays apart while its triangles' travel sum is below it (-1: test it)")
-
 //! Read-only views of the params.
 BLASTSIM_CONST_GROUP(NodeParams, BLASTSIM_ROCK_NODE_PARAMS)
 BLASTSIM_CONST_GROUP(TriangleParams, BLASTSIM_ROCK_TRIANGLE_PARAMS)
@@ -190,8 +171,6 @@ BLASTSIM_VIEW_GROUP(NodeLedger, BLASTSIM_ROCK_NODE_LEDGER)
 BLASTSIM_VIEW_GROUP(TriangleState, BLASTSIM_ROCK_TRIANGLE_STATE)
 BLASTSIM_VIEW_GROUP(EdgeState, BLASTSIM_ROCK_EDGE_STATE)
 BLASTSIM_VIEW_GROUP(JointState, BLASTSIM_ROCK_JOINT_STATE)
-BLASTSIM_VIEW_GROUP(ContactGrid, BLASTSIM_ROCK_CONTACT_GRID)
-BLASTSIM_VIEW_GROUP(ContactPairs, BLASTSIM_ROCK_CONTACT_PAIRS)
 
 //! What a coupler reads of the rock (docs/coupling.md), built from the groups above: the nodes' motion, the
 //! edge slots' exposure and the joints, read-only (RockSolver::view() const).

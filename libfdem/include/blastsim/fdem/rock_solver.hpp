@@ -9,6 +9,7 @@
 //! The arrays live behind the class (rock_fields.hpp lists them), so this header needs no backend headers.
 #pragma once
 
+#include "blastsim/fdem/contact_search.hpp"
 #include "blastsim/fdem/heterogeneity.hpp"
 #include "blastsim/fdem/in_situ_stress.hpp"
 #include "blastsim/fdem/material.hpp"
@@ -179,15 +180,13 @@ class RockSolver {
   int probe_count() const { return probes_; }
 
   //! Number of contact-grid rebuilds so far (broad phase).
-  long contact_rebuilds() const { return rebuilds_; }
+  long contact_rebuilds() const;
   //! Rebuilds the contact broad phase (uniform grid, triangles sorted by cell). step() calls it whenever the
   //! nodes may have travelled half the buffer since the last build; public for benchmarks.
   void rebuild_contact_grid();
 
  private:
-  void build_contact_pairs();  //!< pair numbering from the candidate lists (rebuild, checkpoint read)
-  void list_free_pairs();      //!< contact's work lists from the pairs and the joints' state (build_contact_pairs)
-  void update_vertex_bonds();  //!< which mesh vertices still have all their joints intact (VertexBondKernel)
+  ContactRock contact_rock() const;  //!< what contact reads of the rock
   //! Contact tests every free pair at the next step (its travel budgets, docs/fdem-solver.md, start again):
   //! called wherever the velocities change outside the node update, since the triangles' travel counters
   //! read the velocities to know how far the last update moved the nodes.
@@ -202,14 +201,10 @@ class RockSolver {
   double stable_dt_ = 0, time_ = 0, pressure_scale_ = 1.0, dt_prev_ = 0;
   double joint_stored_initial_ = 0;  // [J/m] the joints' elastic energy at the start (in-situ preload)
   bool in_situ_set_ = false;
-  long steps_ = 0, rebuilds_ = 0;
-  std::unique_ptr<detail::RockArrays> a_;  // every device array (rock_storage.hpp)
-  // contact broad phase: uniform grid (cell size, origin, cells), buffer, pairs, travel since the last build
-  double cell_size_ = 0, grid_x0_ = 0, grid_y0_ = 0;
-  int grid_nx_ = 0, grid_ny_ = 0;
-  int pairs_ = 0, free_pairs_ = 0;  // candidate pairs; those not held when the work lists were made
+  long steps_ = 0;
+  std::unique_ptr<detail::RockArrays> a_;  // every device array but contact's (rock_storage.hpp)
+  std::unique_ptr<ContactSearch> contact_;  // contact between the triangles: its arrays and broad phase
   int probes_ = 0;
-  double buffer_ = 0, travel_since_build_ = 0;
   double last_speed_ = 0;    // largest node speed of the last finish_motion() [m/s]
   double pending_time_ = 0;  // time advanced since the last finish_motion() [s]
 };
