@@ -166,7 +166,7 @@ void RockOutputs::snapshot() {
   const fdem::RockSnapshot s = solver_.snapshot();
   fdem::RockCellFields cells;
   const auto t0 = std::chrono::steady_clock::now();
-  if (c_.analysis.fragments) cells.fragment_id = solver_.fragment_labels();
+  if (c_.analysis.fragments) cells.fragment_id = fdem::fragment_labels(solver_.view());
   if (c_.output.vtk) cells.damage = fdem::triangle_damage(s);  // for the VTU only
   analyse(s, cells.fragment_id);
   analysis_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -14,7 +14,7 @@ int main() {
   for (double x : {0.1, 0.2}) rock.break_joints(rock.joints_on_segment(x, 0.0, x, 0.2, 1e-9));
   rock.break_joints(rock.joints_on_segment(0.0, 0.1, 0.3, 0.1, 1e-9));
   const RockSnapshot snap = rock.snapshot();
-  const std::vector<Fragment> fragments = measure_fragments(snap, rock.fragment_labels(), rock.material().density);
+  const std::vector<Fragment> fragments = measure_fragments(snap, fragment_labels(rock.view()), rock.material().density);
   const SizeDistribution sizes = size_distribution(fragments, 0.5);
   std::printf("%zu fragments (expected 6); each %.4f m2, sieve size %.4f m (expected 0.01 m2, 0.1 m); X50 %.4f m\n",
               fragments.size(), fragments[0].area, fragments[0].sieve_size, sizes.x50);

@@ -171,6 +171,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.joints.broken.assign(joints_, 0);
   a.joint_tangent.assign(joints_, Vec2{0.0, 0.0});
   a.speed2_peak.assign(3 * triangles_, 0.0);
+  probes_ = std::make_unique<RockProbes>();
   contact_ = std::make_unique<ContactSearch>(triangles_, vertex, joint_nodes_host_, options_.contact_buffer,
                                              options_.contact);
   if (options_.contact) rebuild_contact_grid();
@@ -342,7 +343,7 @@ EquilibriumReport RockSolver::equilibrate(const EquilibriumOptions& o) {
   a.ledger.work.assign(node_count(), NodeWork{0, 0, 0, 0, 0, 0});
   a.ledger.support.assign(node_count(), Vec2{0.0, 0.0});
   a.triangles.dissipation.assign(triangles_, TriangleDissipation{0, 0});
-  a.probe_peak.assign(probes_, ProbePeak{0, 0, 0, 0});
+  probes_->clear_peaks();
   const RockEnergies e = energies();
   joint_stored_initial_ = e.joint_stored;
   r.elastic_energy = e.strain + e.joint_stored;
@@ -390,10 +391,7 @@ void RockSolver::advance(double dt, int substeps, const std::function<void(int)>
     update_nodes(dt);
     time_ += dt;
     ++steps_;
-    if (probes_ > 0)
-      for_each_index("fdem.probes", probes_,
-                     ProbePeakKernel{device_ptr(a_->probe_station), device_ptr(a_->nodes.vx), device_ptr(a_->nodes.vy),
-                                     device_ptr(a_->probe_peak), time_});
+    probes_->record(a_->nodes.read(), time_);
   }
   pending_time_ = dt * substeps;  // update_nodes() kept each node's largest speed (flagged if not finite)
 }
@@ -572,73 +570,14 @@ void RockSolver::break_joints(const std::vector<int>& joints) {
   copy_from_host(a.joints.damage, damage);
 }
 
-std::vector<int> RockSolver::fragment_labels() const {
-  detail::RockArrays& a = *a_;
-  a.label_a.resize(triangles_), a.label_b.resize(triangles_);
-  fill_indices("fdem.fragments.labels", a.label_a);
-  const FragmentLinks links{device_ptr(a.edge_params.neighbour), device_ptr(a.edge_params.joint), device_ptr(a.joints.broken)};
-  int* in = device_ptr(a.label_a);
-  int* out = device_ptr(a.label_b);
-  // Each sweep at least halves the label chains (pointer jumping) or carries a label one triangle further,
-  // so the count is bounded by the triangles; the bound only guards against a logic error.
-  for (int sweep = 0; sweep <= triangles_; ++sweep) {
-    for_each_index("fdem.fragments.sweep", triangles_, LabelSweepKernel{links, in, out});
-    const int* before = in;
-    const int* after = out;
-    const int changed = reduce_max("fdem.fragments.changed", triangles_, 0,
-                                   [=] BLAST_HD(index_t t) { return before[t] != after[t] ? 1 : 0; });
-    std::swap(in, out);
-    if (!changed) return to_host(in == device_ptr(a.label_a) ? a.label_a : a.label_b);
-  }
-  throw std::logic_error("fragment_labels: label propagation did not converge");
-}
 
 void RockSolver::set_probes(const std::vector<std::array<double, 2>>& points, const std::vector<double>& until) {
-  if (!until.empty() && until.size() != points.size())
-    throw InputError("set_probes: " + std::to_string(until.size()) + " window ends for " + std::to_string(points.size()) +
-                     " probes");
-  const std::vector<double> px = to_host(a_->node_params.x0), py = to_host(a_->node_params.y0);
-  std::vector<ProbeStation> stations;
-  for (size_t k = 0; k < points.size(); ++k) {
-    const double x = points[k][0], y = points[k][1];
-    int found = -1;
-    double w[3] = {0, 0, 0};
-    for (int t = 0; t < triangles_ && found < 0; ++t) {  // barycentric weights (counter-clockwise triangles)
-      const int n = 3 * t;
-      const double det = (px[n + 1] - px[n]) * (py[n + 2] - py[n]) - (px[n + 2] - px[n]) * (py[n + 1] - py[n]);
-      const double w1 = ((x - px[n]) * (py[n + 2] - py[n]) - (px[n + 2] - px[n]) * (y - py[n])) / det;
-      const double w2 = ((px[n + 1] - px[n]) * (y - py[n]) - (x - px[n]) * (py[n + 1] - py[n])) / det;
-      const double tol = -1e-12;
-      if (w1 >= tol && w2 >= tol && 1 - w1 - w2 >= tol) found = t, w[0] = 1 - w1 - w2, w[1] = w1, w[2] = w2;
-    }
-    if (found < 0) {
-      std::ostringstream os;
-      os << "rock probe " << k << " at (" << x << ", " << y << ") m lies in no triangle of the rock mesh";
-      throw InputError(os.str());
-    }
-    stations.push_back(ProbeStation{found, {w[0], w[1], w[2]}, until.empty() ? 1e308 : until[k]});
-  }
-  probes_ = static_cast<int>(stations.size());
-  copy_from_host(a_->probe_station, stations);
-  a_->probe_peak.assign(probes_, ProbePeak{0, 0, 0, 0});
+  probes_->set(points, until, to_host(a_->node_params.x0), to_host(a_->node_params.y0));
 }
 
-std::vector<ProbeSample> RockSolver::probe_samples() const {
-  // The current velocity at each probe, interpolated on the device (one thread per probe) and copied once.
-  a_->probe_velocity.resize(probes_);
-  const ProbeStation* station = device_ptr(a_->probe_station);
-  const double* vx = device_ptr(a_->nodes.vx);
-  const double* vy = device_ptr(a_->nodes.vy);
-  Vec2* now = device_ptr(a_->probe_velocity);
-  for_each_index("fdem.probes.velocity", probes_,
-                 [=] BLAST_HD(index_t k) { probe_velocity(station[k], vx, vy, now[k].x, now[k].y); });
-  const std::vector<Vec2> v = to_host(a_->probe_velocity);
-  const std::vector<ProbePeak> peaks = to_host(a_->probe_peak);
-  std::vector<ProbeSample> out(v.size());
-  for (size_t k = 0; k < v.size(); ++k)
-    out[k] = ProbeSample{v[k].x, v[k].y, peaks[k].speed, peaks[k].time, peaks[k].vx, peaks[k].vy};
-  return out;
-}
+std::vector<ProbeSample> RockSolver::probe_samples() const { return probes_->samples(a_->nodes.read()); }
+
+int RockSolver::probe_count() const { return probes_->count(); }
 
 RockView RockSolver::view() {
   return {std::as_const(*this).view(), a_->edge_loads.view()};
@@ -758,7 +697,7 @@ void RockSolver::write_checkpoint(CheckpointWriter& w) const {
   if (joint_stored_initial_ != 0) w.value("rock.joint_stored_initial", joint_stored_initial_);
   w.value("rock.steps", steps_);
   contact_->write_checkpoint(w);
-  write_array(w, "rock.probes.peak", a_->probe_peak);
+  probes_->write_checkpoint(w);
 }
 
 void RockSolver::read_checkpoint(CheckpointReader& r) {
@@ -781,13 +720,7 @@ void RockSolver::read_checkpoint(CheckpointReader& r) {
   joint_stored_initial_ = r.has("rock.joint_stored_initial") ? r.non_negative("rock.joint_stored_initial") : 0.0;
   steps_ = r.value<long>("rock.steps");
   if (steps_ < 0 || steps_ > kMaxCheckpointSteps) r.fail("rock.steps", "negative or above 1e15");
-  read_array(r, "rock.probes.peak", a_->probe_peak);  // set_probes() came first, as when it was written
-  if (a_->probe_peak.size() != static_cast<size_t>(probes_))
-    r.fail("rock.probes.peak", "holds " + std::to_string(a_->probe_peak.size()) + " probes, this case has " +
-                                   std::to_string(probes_));
-  for (const ProbePeak& p : to_host(a_->probe_peak))
-    if (!(std::isfinite(p.speed) && p.speed >= 0 && std::isfinite(p.time) && std::isfinite(p.vx) && std::isfinite(p.vy)))
-      r.fail("rock.probes.peak", "a peak is not finite or negative");
+  probes_->read_checkpoint(r);  // set_probes() came first, as when it was written
   // Every index and flag against what it addresses, before any kernel reads it.
   const detail::RockArrays& a = *a_;
   r.check_range("rock.node_loads.constraint", to_host(a.node_loads.constraint), 0,

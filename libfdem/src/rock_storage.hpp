@@ -4,7 +4,6 @@
 #pragma once
 
 #include "blastsim/core/device_groups.hpp"
-#include "blastsim/fdem/fragment_kernels.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
 
 #include <string>
@@ -44,15 +43,9 @@ struct RockArrays {
   // per joint: the unit tangent of its faces in the current substep (JointGeometryKernel, read by
   // JointForceKernel); not checkpointed
   DeviceVector<Vec2> joint_tangent;
-  // velocity probes (set_probes): their stations (fixed) and peaks (checkpointed as rock.probes.peak)
-  DeviceVector<ProbeStation> probe_station;
-  DeviceVector<ProbePeak> probe_peak;
-  DeviceVector<Vec2> probe_velocity;  // work array of probe_samples()
   // square of the largest speed of each node since the last finish_motion() [m2/s2]; zero between steps, not
   // checkpointed
   DeviceVector<double> speed2_peak;
-  // work arrays of fragment_labels() (two label buffers), sized on first use
-  DeviceVector<int> label_a, label_b;
 
   //! Calls fn(record name, array, fixed size) for every array a checkpoint holds: the loads and the state, not the
   //! params (the restarted solver builds them from the same mesh and material); contact writes its own

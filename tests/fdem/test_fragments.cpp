@@ -66,7 +66,7 @@ TEST_CASE("A1: a square cut into k x k blocks gives k^2 fragments with the exact
     std::vector<std::array<double, 4>> lines;
     for (int i = 1; i < k; ++i) lines.push_back({i * L / k, 0, i * L / k, L}), lines.push_back({0, i * L / k, L, i * L / k});
     RockSolver s = cut(topo, lines);
-    const std::vector<int> labels = s.fragment_labels();
+    const std::vector<int> labels = fragment_labels(s.view());
     const RockSnapshot snap = s.snapshot();
     const std::vector<Fragment> f = measure_fragments(snap, labels, 2600.0);
     double area_error = 0, size_error = 0, mass_error = 0;
@@ -82,7 +82,7 @@ TEST_CASE("A1: a square cut into k x k blocks gives k^2 fragments with the exact
     CHECK(mass_error < 1e-12);
     CHECK(size_error < 1e-12);  // a square's minimum width is its side
     CHECK(labels == reference_labels(topo, snap.joint_broken));
-    CHECK(labels == s.fragment_labels());  // repeated: the same labels
+    CHECK(labels == fragment_labels(s.view()));  // repeated: the same labels
     for (const Fragment& g : f) CHECK_FALSE(g.fines);
   }
 }
@@ -92,7 +92,7 @@ TEST_CASE("A2: an L-shaped and a ring-shaped piece get one label each", "[fdem][
     const double L = 1.0;
     const FdemTopology topo = build_topology(structured_rectangle(12, 12, 0.0, L, 0.0, L));
     RockSolver s = cut(topo, {{L / 2, L / 2, L / 2, L}, {L / 2, L / 2, L, L / 2}});
-    const std::vector<int> labels = s.fragment_labels();
+    const std::vector<int> labels = fragment_labels(s.view());
     const std::vector<Fragment> f = measure_fragments(s.snapshot(), labels, 1000.0);
     REQUIRE(f.size() == 2);
     const Fragment& big = f[0].area > f[1].area ? f[0] : f[1];
@@ -123,7 +123,7 @@ TEST_CASE("A2: an L-shaped and a ring-shaped piece get one label each", "[fdem][
           on_circles.push_back(static_cast<int>(j));
     }
     s.break_joints(on_circles);
-    const std::vector<int> labels = s.fragment_labels();
+    const std::vector<int> labels = fragment_labels(s.view());
     const RockSnapshot snap = s.snapshot();
     const std::vector<Fragment> f = measure_fragments(snap, labels, 1000.0);
     std::printf("A2: disc with two circles cut (%zu joints): %zu fragments (expected 3: inner ring, ring, outer ring)\n",
@@ -160,7 +160,7 @@ TEST_CASE("A3: sieve size (minimum Feret width) of an ellipse-shaped and a recta
       if (inside(topo.joints[j].triangle_a) != inside(topo.joints[j].triangle_b)) boundary.push_back(static_cast<int>(j));
     RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
     s.break_joints(boundary);
-    const std::vector<Fragment> f = measure_fragments(s.snapshot(), s.fragment_labels(), 2600.0);
+    const std::vector<Fragment> f = measure_fragments(s.snapshot(), fragment_labels(s.view()), 2600.0);
     REQUIRE(f.size() == 2);
     const Fragment& e = f[0].area < f[1].area ? f[0] : f[1];
     std::printf("A3: ellipse %g x %g m on %d x %d cells: sieve size %.5f m vs minor axis %.5f m (%+.2f %%); "
@@ -173,7 +173,7 @@ TEST_CASE("A3: sieve size (minimum Feret width) of an ellipse-shaped and a recta
   SECTION("rectangle 0.8 x 0.3 m") {
     const FdemTopology topo = build_topology(structured_rectangle(16, 6, 0.0, 0.8, 0.0, 0.3));
     RockSolver s(topo, RockMaterial::paper_table2(), RockOptions{});
-    const std::vector<Fragment> f = measure_fragments(s.snapshot(), s.fragment_labels(), 2600.0);
+    const std::vector<Fragment> f = measure_fragments(s.snapshot(), fragment_labels(s.view()), 2600.0);
     REQUIRE(f.size() == 1);
     std::printf("A3: rectangle 0.8 x 0.3 m: sieve size %.15g m (expected 0.3)\n", f[0].sieve_size);
     CHECK(std::fabs(f[0].sieve_size / 0.3 - 1) < 1e-12);

@@ -1,5 +1,6 @@
 //! \file test_rock_gmsh.cpp
 //! \brief FDEM validation on Gmsh meshes: F2 (Lame cylinder), F6 (Brazilian disc), F8 (uniaxial compression).
+#include "blastsim/fdem/fragments.hpp"
 #include "blastsim/fdem/gmsh_mesh.hpp"
 #include "blastsim/fdem/rock_model.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
@@ -253,7 +254,7 @@ JointSetPull pull_jointed_block(const JointSetSpec* set) {
   const RockSnapshot snap = s.snapshot();
   JointSetPull r;
   r.fragments = 0;
-  const std::vector<int> labels = s.fragment_labels();
+  const std::vector<int> labels = fragment_labels(s.view());
   for (std::size_t t = 0; t < labels.size(); ++t) r.fragments += labels[t] == static_cast<int>(t) ? 1 : 0;
   std::vector<int> on_set(snap.joint_broken.size(), 0);
   if (set) {

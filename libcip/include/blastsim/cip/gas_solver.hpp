@@ -2,6 +2,7 @@
 //! \brief The CIP compressible-gas solver of the paper's eqs. (1)-(5) with a device-array interface.
 #pragma once
 
+#include "blastsim/core/checkpoint_fwd.hpp"
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/cip/gas_state.hpp"
 #include "blastsim/cip/gas_step_kernels.hpp"
@@ -13,11 +14,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace blastsim {
-class CheckpointWriter;
-class CheckpointReader;
-}  // namespace blastsim
 
 namespace blastsim::cip {
 

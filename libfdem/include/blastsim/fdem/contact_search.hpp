@@ -5,15 +5,11 @@
 //! behind a pointer (contact_search_kernels.hpp declares them).
 #pragma once
 
+#include "blastsim/core/checkpoint_fwd.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
 
 #include <memory>
 #include <vector>
-
-namespace blastsim {
-class CheckpointWriter;
-class CheckpointReader;
-}  // namespace blastsim
 
 namespace blastsim::fdem {
 

@@ -1,9 +1,10 @@
 //! \file fragments.hpp
 //! \brief What a blast engineer reads off a rock state: fragments and their sizes, the size distribution with
 //! Swebrec and Rosin-Rammler fits, per-triangle damage and the damage zone around a hole. Host functions on a
-//! RockSnapshot and the labels of RockSolver::fragment_labels(); docs/analysis.md defines every quantity.
+//! RockSnapshot and the labels of fragment_labels(); docs/analysis.md defines every quantity.
 #pragma once
 
+#include "blastsim/fdem/rock_fields.hpp"
 #include "blastsim/fdem/rock_types.hpp"
 
 #include <array>
@@ -29,7 +30,12 @@ struct Fragment {
   bool fines = false;         //!< fewer triangles than the sizing minimum: counted as fines, not sized
 };
 
-//! Measures the fragments of a snapshot from per-triangle labels (RockSolver::fragment_labels()); density
+//! Fragment label of every triangle: triangles joined through joints that have not broken share a label, the
+//! smallest triangle index of their fragment (label propagation with pointer jumping on the device; the same
+//! labels on every backend and thread count). Costs a few sweeps over the triangles and a host wait a sweep.
+std::vector<int> fragment_labels(const RockReadView& rock);
+
+//! Measures the fragments of a snapshot from per-triangle labels (fragment_labels()); density
 //! [kg/m3]; pieces of fewer than `min_triangles` triangles are marked fines. Ordered by label.
 std::vector<Fragment> measure_fragments(const RockSnapshot& s, const std::vector<int>& labels, double density,
                                         int min_triangles = kDefaultMinFragmentTriangles);

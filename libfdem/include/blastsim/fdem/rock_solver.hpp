@@ -9,12 +9,14 @@
 //! The arrays live behind the class (rock_fields.hpp lists them), so this header needs no backend headers.
 #pragma once
 
+#include "blastsim/core/checkpoint_fwd.hpp"
 #include "blastsim/fdem/contact_search.hpp"
 #include "blastsim/fdem/heterogeneity.hpp"
 #include "blastsim/fdem/in_situ_stress.hpp"
 #include "blastsim/fdem/material.hpp"
 #include "blastsim/fdem/mesh.hpp"
 #include "blastsim/fdem/rock_fields.hpp"
+#include "blastsim/fdem/rock_probes.hpp"
 #include "blastsim/fdem/rock_step_kernels.hpp"
 #include "blastsim/fdem/rock_types.hpp"
 
@@ -23,11 +25,6 @@
 #include <functional>
 #include <memory>
 #include <vector>
-
-namespace blastsim {
-class CheckpointWriter;
-class CheckpointReader;
-}  // namespace blastsim
 
 namespace blastsim::fdem {
 
@@ -143,11 +140,6 @@ class RockSolver {
   //! The four nodes of each joint (host copy of the params).
   const std::vector<JointNodes>& joint_nodes() const { return joint_nodes_host_; }
   // --- analysis on the device (rock_analysis.hpp and fragments.hpp use the results) ---
-  //! Fragment label of every triangle: triangles joined through joints that have not broken share a label,
-  //! the smallest triangle index of their fragment (label propagation with pointer jumping on the device;
-  //! the same labels on every backend and thread count). Costs a few sweeps over the triangles and a sync
-  //! per sweep.
-  std::vector<int> fragment_labels() const;
   //! Gives `joints` the strength and fracture energies `q` (natural joints of a set), before the first step.
   //! Throws InputError for a joint that does not exist or properties the joint law cannot take,
   //! std::logic_error after a step.
@@ -177,7 +169,7 @@ class RockSolver {
   void set_probes(const std::vector<std::array<double, 2>>& points, const std::vector<double>& until = {});
   //! Per probe: its current velocity and the peak so far (host copy).
   std::vector<ProbeSample> probe_samples() const;
-  int probe_count() const { return probes_; }
+  int probe_count() const;
 
   //! Number of contact-grid rebuilds so far (broad phase).
   long contact_rebuilds() const;
@@ -204,7 +196,7 @@ class RockSolver {
   long steps_ = 0;
   std::unique_ptr<detail::RockArrays> a_;  // every device array but contact's (rock_storage.hpp)
   std::unique_ptr<ContactSearch> contact_;  // contact between the triangles: its arrays and broad phase
-  int probes_ = 0;
+  std::unique_ptr<RockProbes> probes_;      // velocity probes
   double last_speed_ = 0;    // largest node speed of the last finish_motion() [m/s]
   double pending_time_ = 0;  // time advanced since the last finish_motion() [s]
 };

@@ -12,7 +12,7 @@ namespace blastsim::fdem {
 
 //! Per-triangle results of the analysis written with the triangles (an empty array is left out).
 struct RockCellFields {
-  std::vector<int> fragment_id;  //!< RockSolver::fragment_labels()
+  std::vector<int> fragment_id;  //!< fragment_labels() (fragments.hpp)
   std::vector<double> damage;    //!< triangle_damage()
 };
 

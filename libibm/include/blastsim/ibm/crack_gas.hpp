@@ -6,6 +6,7 @@
 //! the grid each step.
 #pragma once
 
+#include "blastsim/core/checkpoint_fwd.hpp"
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/ibm/crack_gas_kernels.hpp"
 
@@ -13,11 +14,6 @@
 #include <memory>
 #include <optional>
 #include <vector>
-
-namespace blastsim {
-class CheckpointWriter;
-class CheckpointReader;
-}  // namespace blastsim
 
 namespace blastsim::ibm {
 
