@@ -359,7 +359,7 @@ RockModel build_rock_model(const RockModelSpec& spec) {
       held.insert(held.end(), slots.begin(), slots.end());
     }
     try {
-      solver.set_in_situ_stress(is.stress, held);
+      set_in_situ_stress(solver, is.stress, held);
     } catch (const InputError& e) {
       throw InputError(is.label + ": " + e.what());
     }
@@ -382,7 +382,7 @@ RockModel build_rock_model(const RockModelSpec& spec) {
   }
   if (spec.in_situ && spec.in_situ->equilibrate) {
     const InSituSpec& is = *spec.in_situ;
-    m.equilibrium = solver.equilibrate(is.equilibrium);
+    m.equilibrium = equilibrate(solver, is.equilibrium);
     if (!m.equilibrium->converged)
       throw InstabilityError(is.label + ": the rock did not come to rest under its in-situ stress in max_steps = " +
                              std::to_string(is.equilibrium.max_steps) + " steps (" +

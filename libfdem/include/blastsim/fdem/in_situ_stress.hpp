@@ -56,7 +56,7 @@ void carry_cut_weight(const InSituStress& s, const std::vector<BoundaryEdge>& bo
                       const std::vector<int>& node_vertex, const std::vector<double>& x0, const std::vector<double>& y0,
                       const std::vector<char>& held_slot, std::vector<Vec2>& load);
 
-//! Static equilibration by viscous dynamic relaxation (RockSolver::equilibrate(); Otter 1966, Underwood 1983):
+//! Static equilibration by viscous dynamic relaxation (equilibrate(), rock_model.hpp; Otter 1966, Underwood 1983):
 //! explicit steps at the stable step with mass-proportional damping c = 2 omega, omega = pi c_s / (2 L) an
 //! estimate of the slowest mode of a model of size L (its bounding box's diagonal), so every mode's amplitude
 //! decays as exp(-omega t). Once the kinetic energy is below `tolerance` x the elastic energy the rock holds, the

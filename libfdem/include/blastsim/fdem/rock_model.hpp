@@ -171,6 +171,23 @@ struct RockModel {
 //! cannot carry its in-situ traction; InstabilityError: the rock did not come to rest under its in-situ stress.
 RockModel build_rock_model(const RockModelSpec& spec);
 
+//! Puts the in-situ stress `s` into `rock` before its first step, after the joints' own properties
+//! (docs/fdem-solver.md, "In-situ stress"): each triangle's stress-free shape becomes the one its in-situ stress
+//! (at its centroid) stretches to the mesh (prestretch(), so the stress turns with the triangle and a released
+//! piece relaxes), each intact joint starts at the opening and slip whose tractions carry sigma n across it (at
+//! its middle; joint_preload()), and the boundary edge slots `held` (where the model cuts a rock mass that goes
+//! on) carry the traction sigma n as a dead load, half on each node, plus the weight the holes took out under
+//! gravity (carry_cut_weight()). A rock without other free surfaces then starts at rest; holes and free faces
+//! need equilibrate(). Throws InputError for a held slot that is not a mesh-boundary edge or a joint that cannot
+//! carry its traction (naming it), std::logic_error after a step.
+void set_in_situ_stress(RockSolver& rock, const InSituStress& s, const std::vector<int>& held);
+//! Brings `rock` to rest before its first step under the in-situ stress, gravity and the held boundaries (viscous
+//! dynamic relaxation: EquilibriumOptions; edge pressures off, prescribed velocities held at zero), then starts the
+//! clock again: time and steps zero, the work ledgers, dissipations and probe peaks cleared (joint damage stays),
+//! the pressures, prescribed velocities and the nodes' velocities as they were before. The state reached is the
+//! initial state of the run.
+EquilibriumReport equilibrate(RockSolver& rock, const EquilibriumOptions& options = {});
+
 //! Mean length [m] of the joints of a topology (0 without joints).
 double mean_joint_length(const FdemTopology& topology);
 

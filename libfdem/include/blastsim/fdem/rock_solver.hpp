@@ -144,19 +144,6 @@ class RockSolver {
   //! Throws InputError for a joint that does not exist or properties the joint law cannot take,
   //! std::logic_error after a step.
   void set_joint_properties(const std::vector<int>& joints, const JointProperties& q);
-  //! Puts the in-situ stress `s` into the rock before the first step, after the joints' own properties
-  //! (docs/fdem-solver.md, "In-situ stress"): each triangle's stress-free shape becomes the one its in-situ stress
-  //! (at its centroid) stretches to the mesh (prestretch(), so the stress turns with the triangle and a released
-  //! piece relaxes), each intact joint starts at the opening and slip whose tractions carry sigma n across it (at
-  //! its middle; joint_preload()), and the boundary edge slots `held` (where the model cuts a rock mass that goes
-  //! on) carry the traction sigma n as a dead load, half on each node. A rock without other free surfaces then
-  //! starts at rest; holes and free faces need equilibrate(). Throws InputError for a held slot that is not a
-  //! mesh-boundary edge or a joint that cannot carry its traction (naming it), std::logic_error after a step.
-  void set_in_situ_stress(const InSituStress& s, const std::vector<int>& held);
-  //! Brings the rock to rest under its loads before the first step (viscous dynamic relaxation: EquilibriumOptions), then
-  //! starts the clock again: time and steps zero, every node at rest, the work ledgers, dissipations and probe
-  //! peaks cleared (joint damage stays). The state reached is the initial state of the run.
-  EquilibriumReport equilibrate(const EquilibriumOptions& options = {});
   //! Kinetic energy [J/m] of the nodes (one reduction).
   double kinetic_energy() const;
   //! Each joint's strength parameters as the joint law uses them (host copy; heterogeneous rock shows its draw).
@@ -178,6 +165,9 @@ class RockSolver {
   void rebuild_contact_grid();
 
  private:
+  // The in-situ set-up and relaxation (rock_model.hpp, in_situ_setup.cpp) set the rock's state before its first step.
+  friend void set_in_situ_stress(RockSolver& rock, const InSituStress& s, const std::vector<int>& held);
+  friend EquilibriumReport equilibrate(RockSolver& rock, const EquilibriumOptions& options);
   ContactRock contact_rock() const;  //!< what contact reads of the rock
   //! Contact tests every free pair at the next step (its travel budgets, docs/fdem-solver.md, start again):
   //! called wherever the velocities change outside the node update, since the triangles' travel counters

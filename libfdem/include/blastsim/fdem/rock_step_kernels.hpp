@@ -219,6 +219,16 @@ BLAST_HD inline Vec2 viscous_boundary_velocity(double m, double dt, const Mat2& 
   return {m * (inv.a * v_free.x + inv.b * v_free.y), m * (inv.c * v_free.x + inv.d * v_free.y)};
 }
 
+//! Multiplies every node's velocity by f (the in-situ relaxation's damping, one step of it; f = 0: at rest).
+struct ScaleVelocitiesKernel {
+  NodeMotion<Access::read_write> nodes;  //!< vx, vy
+  double f;
+  BLAST_HD void operator()(index_t n) const {
+    nodes.vx[n] *= f;
+    nodes.vy[n] *= f;
+  }
+};
+
 //! The square of a node's speed [m2/s2], or kSpeedFlag where it is not finite or above 1e300 (so that a maximum
 //! over nodes flags instability).
 inline constexpr double kSpeedFlag = 1e308;
