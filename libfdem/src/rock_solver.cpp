@@ -169,8 +169,8 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
   a.joints.separation.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.traction.assign(joints_, JointPointValues{{0, 0, 0}, {0, 0, 0}});
   a.joints.broken.assign(joints_, 0);
-  a.joint_tangent.assign(joints_, Vec2{0.0, 0.0});
-  a.speed2_peak.assign(3 * triangles_, 0.0);
+  a.joint_work.tangent.assign(joints_, Vec2{0.0, 0.0});
+  a.peaks.speed2.assign(3 * triangles_, 0.0);
   probes_ = std::make_unique<RockProbes>();
   contact_ = std::make_unique<ContactSearch>(triangles_, vertex, joint_nodes_host_, options_.contact_buffer,
                                              options_.contact);
@@ -211,7 +211,7 @@ void RockSolver::step(double dt) {
   finish_motion(reduce_max("fdem.vmax", node_count(), 0.0, peak_speed_kernel()));
 }
 
-NodeSpeedPeak RockSolver::peak_speed_kernel() const { return NodeSpeedPeak{device_ptr(a_->speed2_peak)}; }
+NodeSpeedPeak RockSolver::peak_speed_kernel() const { return NodeSpeedPeak{a_->peaks.read()}; }
 
 void RockSolver::advance(double dt, int substeps, const std::function<void(int)>& before_step) {
   if (substeps < 1) throw std::invalid_argument("RockSolver::advance: substeps must be at least 1");
@@ -239,7 +239,7 @@ void RockSolver::advance(double dt, int substeps, const std::function<void(int)>
 }
 
 void RockSolver::finish_motion(double v_max) {
-  fill_device("fdem.speed2_peak.clear", a_->speed2_peak, 0.0);
+  fill_device("fdem.speed2_peak.clear", a_->peaks.speed2, 0.0);
   const double advanced = pending_time_;
   pending_time_ = 0;
   if (!(v_max < 1e300)) {
@@ -283,9 +283,9 @@ void RockSolver::joint_forces() {
   detail::RockArrays& a = *a_;
   if (joints_ == 0) return;
   for_each_index("fdem.joints.geometry", joints_,
-                 JointGeometryKernel{a.nodes.read(), a.joint_params.view(), a.joints.view(), device_ptr(a.joint_tangent)});
+                 JointGeometryKernel{a.nodes.read(), a.joint_params.view(), a.joints.view(), a.joint_work.view()});
   for_each_index("fdem.joints", joints_,
-                 JointForceKernel{a.joint_params.view(), a.joints.view(), a.edges.view(), device_ptr(a.joint_tangent)});
+                 JointForceKernel{a.joint_params.view(), a.joints.view(), a.edges.view(), a.joint_work.read()});
 }
 
 // Munjiza 2004 ch. 2: distributed-potential contact, with Coulomb friction (ContactSearch).
@@ -300,8 +300,8 @@ void RockSolver::update_nodes(double dt) {
   detail::RockArrays& a = *a_;
   for_each_index("fdem.nodes", node_count(),
                  NodeUpdateKernel{a.node_params.view(), a.node_loads.view(), a.forces.read(),
-                                  device_ptr(a.edges.joint_force), a.nodes.view(), a.ledger.view(),
-                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, device_ptr(a.speed2_peak)});
+                                  a.edges.read(), a.nodes.view(), a.ledger.view(),
+                                  options_.gravity[0], options_.gravity[1], dt, dt_prev_, a.peaks.view()});
   dt_prev_ = dt;
 }
 
@@ -435,56 +435,36 @@ std::vector<std::uint8_t> RockSolver::edge_exposure() const { return to_host(a_-
 std::vector<Vec2> RockSolver::node_loads() const { return to_host(a_->edge_loads.node_load); }
 
 double RockSolver::kinetic_energy() const {
-  const NodeMotion<Access::read> m = a_->nodes.read();
-  const NodeParams np = a_->node_params.view();
-  return reduce_sum("fdem.energy.kinetic", node_count(), 0.0, [=] BLAST_HD(index_t n) {
-    return 0.5 * np.mass[n] * (m.vx[n] * m.vx[n] + m.vy[n] * m.vy[n]);
-  });
+  return reduce_sum("fdem.energy.kinetic", node_count(), 0.0, NodeKineticEnergy{a_->nodes.read(), a_->node_params.view()});
 }
 
 RockEnergies RockSolver::energies() const {
   const detail::RockArrays& a = *a_;
-  const NodeMotion<Access::read> m = a.nodes.read();
-  const TriangleParams tp = a.triangle_params.view();
-  const NodeWork* work = device_ptr(a.ledger.work);
-  const TriangleDissipation* dissipation = device_ptr(a.triangles.dissipation);
   const JointParams jp = a.joint_params.view();
   const JointState<Access::read> js = a.joints.read();
   RockEnergies e;
   e.kinetic = kinetic_energy();
-  const double lambda = material_.lame_lambda(), mu = material_.shear_modulus();
   // the strain at the middle of the last step (x - v dt / 2), where the work ledger and the kinetic energy of
   // the half-step velocities stand (docs/fdem-solver.md, "Triangle internal force")
-  const double half_step = 0.5 * dt_prev_;
-  e.strain = reduce_sum("fdem.energy.strain", triangles_, 0.0, [=] BLAST_HD(index_t t) {
-    Vec2 p[3];
-    for (int k = 0; k < 3; ++k) {
-      const int n = 3 * static_cast<int>(t) + k;
-      p[k] = {m.x[n] - half_step * m.vx[n], m.y[n] - half_step * m.vy[n]};
-    }
-    return tp.area0[t] * triangle_strain_energy_density(tp.inv_f0[t], edge_matrix(p[0], p[1], p[2]), lambda, mu);
-  });
+  e.strain = reduce_sum("fdem.energy.strain", triangles_, 0.0,
+                        TriangleStrainEnergy{a.nodes.read(), a.triangle_params.view(), 0.5 * dt_prev_,
+                                             material_.lame_lambda(), material_.shear_modulus()});
   auto work_sum = [&](double NodeWork::*kind) {
-    return reduce_sum("fdem.energy.work", node_count(), 0.0, [=] BLAST_HD(index_t n) { return work[n].*kind; });
+    return reduce_sum("fdem.energy.work", node_count(), 0.0, NodeWorkOf{a.ledger.read(), kind});
   };
   e.pressure_work = work_sum(&NodeWork::pressure);
   e.boundary_work = work_sum(&NodeWork::boundary);
   e.external_work = e.pressure_work + work_sum(&NodeWork::support) + work_sum(&NodeWork::gravity) + e.boundary_work;
   e.joint_work = work_sum(&NodeWork::joint);
   e.contact_work = work_sum(&NodeWork::contact);
-  e.damping_dissipated =
-      reduce_sum("fdem.energy.damping", triangles_, 0.0, [=] BLAST_HD(index_t t) { return dissipation[t].damping; });
-  e.friction_dissipated =
-      reduce_sum("fdem.energy.friction", triangles_, 0.0, [=] BLAST_HD(index_t t) { return dissipation[t].friction; });
-  e.joint_stored = reduce_sum("fdem.energy.joints", joints_, 0.0,
-                              [=] BLAST_HD(index_t j) { return joint_stored_energy(jp, js, static_cast<int>(j)); });
+  e.damping_dissipated = reduce_sum("fdem.energy.damping", triangles_, 0.0,
+                                    TriangleDissipationOf{a.triangles.read(), &TriangleDissipation::damping});
+  e.friction_dissipated = reduce_sum("fdem.energy.friction", triangles_, 0.0,
+                                     TriangleDissipationOf{a.triangles.read(), &TriangleDissipation::friction});
+  e.joint_stored = reduce_sum("fdem.energy.joints", joints_, 0.0, JointStoredEnergy{jp, js});
   e.fracture_dissipated = e.joint_work - (e.joint_stored - joint_stored_initial_);
-  e.broken_joints = static_cast<int>(reduce_sum("fdem.broken", joints_, 0.0, [=] BLAST_HD(index_t j) {
-    return js.broken[j] ? 1.0 : 0.0;
-  }));
-  e.crack_length = reduce_sum("fdem.crack_length", joints_, 0.0, [=] BLAST_HD(index_t j) {
-    return js.broken[j] ? jp.length[j] : 0.0;
-  });
+  e.broken_joints = static_cast<int>(reduce_sum("fdem.broken", joints_, 0.0, BrokenJointLength{jp, js, false}));
+  e.crack_length = reduce_sum("fdem.crack_length", joints_, 0.0, BrokenJointLength{jp, js, true});
   return e;
 }
 
@@ -501,10 +481,7 @@ std::vector<std::array<double, 2>> RockSolver::support_reactions(const std::vect
 }
 
 double RockSolver::contact_force_norm() const {
-  const double* fx = device_ptr(a_->forces.contact_x);
-  const double* fy = device_ptr(a_->forces.contact_y);
-  return reduce_sum("fdem.contact_norm", node_count(), 0.0,
-                    [=] BLAST_HD(index_t n) { return sqrt(fx[n] * fx[n] + fy[n] * fy[n]); });
+  return reduce_sum("fdem.contact_norm", node_count(), 0.0, NodeContactForce{a_->forces.read()});
 }
 
 RockSnapshot RockSolver::snapshot() const {

@@ -22,6 +22,8 @@ BLASTSIM_STATE_STORAGE(TriangleState, BLASTSIM_ROCK_TRIANGLE_STATE)
 BLASTSIM_STATE_STORAGE(EdgeState, BLASTSIM_ROCK_EDGE_STATE)
 BLASTSIM_STATE_STORAGE(EdgeLoads, BLASTSIM_ROCK_EDGE_LOADS)
 BLASTSIM_STATE_STORAGE(JointState, BLASTSIM_ROCK_JOINT_STATE)
+BLASTSIM_STATE_STORAGE(JointWork, BLASTSIM_ROCK_JOINT_WORK)
+BLASTSIM_STATE_STORAGE(NodePeaks, BLASTSIM_ROCK_NODE_PEAKS)
 
 //! All arrays of one RockSolver.
 struct RockArrays {
@@ -40,12 +42,9 @@ struct RockArrays {
   TriangleStateArrays triangles;
   EdgeStateArrays edges;
   JointStateArrays joints;
-  // per joint: the unit tangent of its faces in the current substep (JointGeometryKernel, read by
-  // JointForceKernel); not checkpointed
-  DeviceVector<Vec2> joint_tangent;
-  // square of the largest speed of each node since the last finish_motion() [m2/s2]; zero between steps, not
-  // checkpointed
-  DeviceVector<double> speed2_peak;
+  // work arrays of a step (not checkpointed)
+  JointWorkArrays joint_work;
+  NodePeaksArrays peaks;
 
   //! Calls fn(record name, array, fixed size) for every array a checkpoint holds: the loads and the state, not the
   //! params (the restarted solver builds them from the same mesh and material); contact writes its own

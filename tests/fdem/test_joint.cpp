@@ -237,7 +237,7 @@ TEST_CASE("The joint's two passes: a turned joint's opening, slip and tangent, t
       const NodeMotion<blastsim::Access::read> motion{x.data(), y.data(), vx.data(), vy.data()};
       const JointParams params{&nodes, &strength, &length, &pre};
       const JointState<blastsim::Access::read_write> state{&damage, &plastic, &separation, &traction, &broken};
-      JointGeometryKernel{motion, params, state, &tangent}(0);
+      JointGeometryKernel{motion, params, state, JointWork<blastsim::Access::read_write>{&tangent}}(0);
       CHECK(std::fabs(tangent.x - ct) <= 1e-12);
       CHECK(std::fabs(tangent.y - st) <= 1e-12);
       for (int q = 0; q < kJointPoints; ++q) {
@@ -247,7 +247,7 @@ TEST_CASE("The joint's two passes: a turned joint's opening, slip and tangent, t
       std::vector<SlotForce> slot(4, SlotForce{{9, 9}, {9, 9}});
       std::vector<std::uint8_t> exposed(4, 0);
       const EdgeState<blastsim::Access::read_write> edges{slot.data(), exposed.data()};
-      JointForceKernel{params, state, edges, &tangent}(0);
+      JointForceKernel{params, state, edges, JointWork<blastsim::Access::read>{&tangent}}(0);
       const Vec2 n{tangent.y, -tangent.x};
       const double w[kJointPoints] = {length / 6.0, 4.0 * length / 6.0, length / 6.0};
       Vec2 total{0, 0};

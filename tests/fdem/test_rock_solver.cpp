@@ -88,7 +88,7 @@ TEST_CASE("The peak speed kept as a square: the root of the largest square is th
       if (root > peak_root) peak_root = root;
       if (square > peak_square) peak_square = square;
     }
-    const double read = NodeSpeedPeak{&peak_square}(0);
+    const double read = NodeSpeedPeak{NodePeaks<blastsim::Access::read>{&peak_square}}(0);
     if (std::memcmp(&read, &peak_root, sizeof read) == 0) ++equal;
     if (peak_root == kSpeedFlag) ++flagged;
   }

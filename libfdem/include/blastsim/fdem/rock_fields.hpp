@@ -172,6 +172,14 @@ BLASTSIM_VIEW_GROUP(TriangleState, BLASTSIM_ROCK_TRIANGLE_STATE)
 BLASTSIM_VIEW_GROUP(EdgeState, BLASTSIM_ROCK_EDGE_STATE)
 BLASTSIM_VIEW_GROUP(JointState, BLASTSIM_ROCK_JOINT_STATE)
 
+// ---- work arrays of a step (not checkpointed) ----
+#define BLASTSIM_ROCK_JOINT_WORK(X) \
+  X(Vec2, tangent, "per joint: the unit tangent of its faces in this substep (JointGeometryKernel, read by JointForceKernel)")
+#define BLASTSIM_ROCK_NODE_PEAKS(X) \
+  X(double, speed2, "per node: the square of its largest speed since the last finish_motion() [m2/s2]; zero between steps")
+BLASTSIM_VIEW_GROUP(JointWork, BLASTSIM_ROCK_JOINT_WORK)
+BLASTSIM_VIEW_GROUP(NodePeaks, BLASTSIM_ROCK_NODE_PEAKS)
+
 //! What a coupler reads of the rock (docs/coupling.md), built from the groups above: the nodes' motion, the
 //! edge slots' exposure and the joints, read-only (RockSolver::view() const).
 struct RockReadView {

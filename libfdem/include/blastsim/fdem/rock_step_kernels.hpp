@@ -90,7 +90,7 @@ struct JointGeometryKernel {
   NodeMotion<Access::read> nodes;
   JointParams params;
   JointState<Access::read_write> state;  //!< writes separation
-  Vec2* tangent;                         //!< per joint: t of this substep
+  JointWork<Access::read_write> work;    //!< writes tangent: t of this substep
   BLAST_HD void operator()(index_t ji) const {
     const int j = static_cast<int>(ji);
     if (state.broken[j]) return;
@@ -106,7 +106,7 @@ struct JointGeometryKernel {
     const double tl = sqrt(t.x * t.x + t.y * t.y);
     t = {t.x / tl, t.y / tl};
     const Vec2 n{t.y, -t.x};
-    tangent[j] = t;
+    work.tangent[j] = t;
     const double xi[kJointPoints] = {0.0, 0.5, 1.0};
     JointPointValues& separation = state.separation[j];
     BLAST_UNROLL
@@ -130,7 +130,7 @@ struct JointForceKernel {
   JointParams params;
   JointState<Access::read_write> state;
   EdgeState<Access::read_write> edges;  //!< writes joint_force, and exposed when the joint breaks
-  const Vec2* tangent;                  //!< per joint: t of this substep (JointGeometryKernel)
+  JointWork<Access::read> work;         //!< tangent: t of this substep (JointGeometryKernel)
   BLAST_HD void operator()(index_t ji) const {
     const int j = static_cast<int>(ji);
     const JointNodes jn = params.nodes[j];
@@ -143,7 +143,7 @@ struct JointForceKernel {
     }
     const JointStrength strength = params.strength[j];
     const double length0 = params.length[j];
-    const Vec2 t = tangent[j];
+    const Vec2 t = work.tangent[j];
     const Vec2 n{t.y, -t.x};
     const double xi[kJointPoints] = {0.0, 0.5, 1.0};
     const double w[kJointPoints] = {length0 / 6.0, 4.0 * length0 / 6.0, length0 / 6.0};
@@ -219,6 +219,71 @@ BLAST_HD inline Vec2 viscous_boundary_velocity(double m, double dt, const Mat2& 
   return {m * (inv.a * v_free.x + inv.b * v_free.y), m * (inv.c * v_free.x + inv.d * v_free.y)};
 }
 
+// ---- the rock's sums (RockSolver::energies(); one term an index, added by reduce_sum) ----
+
+//! Kinetic energy [J/m] of node n.
+struct NodeKineticEnergy {
+  NodeMotion<Access::read> nodes;
+  NodeParams params;  //!< mass
+  BLAST_HD double operator()(index_t n) const {
+    return 0.5 * params.mass[n] * (nodes.vx[n] * nodes.vx[n] + nodes.vy[n] * nodes.vy[n]);
+  }
+};
+
+//! Strain energy [J/m] of triangle t at the positions x - half_step v (the middle of the last step, where the work
+//! ledger and the kinetic energy of the half-step velocities stand).
+struct TriangleStrainEnergy {
+  NodeMotion<Access::read> nodes;
+  TriangleParams params;  //!< area0, inv_f0
+  double half_step;       //!< [s] half the last step
+  double lambda, mu;      //!< [Pa]
+  BLAST_HD double operator()(index_t t) const {
+    Vec2 p[3];
+    for (int k = 0; k < 3; ++k) {
+      const int n = 3 * static_cast<int>(t) + k;
+      p[k] = {nodes.x[n] - half_step * nodes.vx[n], nodes.y[n] - half_step * nodes.vy[n]};
+    }
+    return params.area0[t] * triangle_strain_energy_density(params.inv_f0[t], edge_matrix(p[0], p[1], p[2]), lambda, mu);
+  }
+};
+
+//! One kind of work [J/m] of node n (NodeWork's field `kind`).
+struct NodeWorkOf {
+  NodeLedger<Access::read> ledger;
+  double NodeWork::*kind;
+  BLAST_HD double operator()(index_t n) const { return ledger.work[n].*kind; }
+};
+
+//! One kind of dissipation [J/m] of triangle t (TriangleDissipation's field `kind`).
+struct TriangleDissipationOf {
+  TriangleState<Access::read> state;
+  double TriangleDissipation::*kind;
+  BLAST_HD double operator()(index_t t) const { return state.dissipation[t].*kind; }
+};
+
+//! Elastic energy [J/m] joint j stores (joint_stored_energy()).
+struct JointStoredEnergy {
+  JointParams params;
+  JointState<Access::read> joints;
+  BLAST_HD double operator()(index_t j) const { return joint_stored_energy(params, joints, static_cast<int>(j)); }
+};
+
+//! Of a broken joint j: its length [m] (`length` true) or 1 (a count); 0 for an intact one.
+struct BrokenJointLength {
+  JointParams params;
+  JointState<Access::read> joints;
+  bool length;
+  BLAST_HD double operator()(index_t j) const { return joints.broken[j] ? (length ? params.length[j] : 1.0) : 0.0; }
+};
+
+//! Magnitude [N/m] of the contact force on node n.
+struct NodeContactForce {
+  NodeForces<Access::read> forces;
+  BLAST_HD double operator()(index_t n) const {
+    return sqrt(forces.contact_x[n] * forces.contact_x[n] + forces.contact_y[n] * forces.contact_y[n]);
+  }
+};
+
 //! Multiplies every node's velocity by f (the in-situ relaxation's damping, one step of it; f = 0: at rest).
 struct ScaleVelocitiesKernel {
   NodeMotion<Access::read_write> nodes;  //!< vx, vy
@@ -244,8 +309,8 @@ BLAST_HD inline double speed_from_speed2(double s2) { return s2 < kSpeedFlag ? s
 //! the nodes (RockSolver::peak_speed_kernel()). The root of the largest square is the largest of the roots, bit
 //! for bit (a correctly rounded square root never decreases), so one root a node and read serves all substeps.
 struct NodeSpeedPeak {
-  const double* peak2;
-  BLAST_HD double operator()(index_t n) const { return speed_from_speed2(peak2[n]); }
+  NodePeaks<Access::read> peaks;  //!< speed2
+  BLAST_HD double operator()(index_t n) const { return speed_from_speed2(peaks.speed2[n]); }
 };
 
 //! Node update (symplectic Euler, docs/fdem-solver.md): gathers the node's forces (its triangle, the joints
@@ -260,15 +325,15 @@ struct NodeUpdateKernel {
   NodeParams params;  //!< mass, held load
   NodeLoads loads;
   NodeForces<Access::read> forces;
-  const SlotForce* joint_force;
+  EdgeState<Access::read> edges;  //!< joint_force
   NodeMotion<Access::read_write> nodes;
   NodeLedger<Access::read_write> ledger;
   double gx, gy, dt, dt_prev;
-  double* speed2_peak;  //!< per node [m2/s2]
+  NodePeaks<Access::read_write> peaks;  //!< speed2 [m2/s2]
   BLAST_HD void operator()(index_t ni) const {
     const int n = static_cast<int>(ni);
-    const SlotForce& starting = joint_force[n];                // the slot that starts at n (n is its first node)
-    const SlotForce& ending = joint_force[slot_ending_at(n)];  // the slot that ends at n
+    const SlotForce& starting = edges.joint_force[n];                // the slot that starts at n (n is its first node)
+    const SlotForce& ending = edges.joint_force[slot_ending_at(n)];  // the slot that ends at n
     const double m = params.mass[n];
     const Vec2 f_joint{starting.first.x + ending.second.x, starting.first.y + ending.second.y};
     const std::uint8_t cons = loads.constraint[n];
@@ -298,7 +363,7 @@ struct NodeUpdateKernel {
     nodes.vx[n] = v.x;
     nodes.vy[n] = v.y;
     const double speed2 = node_speed2_or_flag(v.x, v.y);
-    if (speed2 > speed2_peak[n]) speed2_peak[n] = speed2;
+    if (speed2 > peaks.speed2[n]) peaks.speed2[n] = speed2;
     nodes.x[n] += v.x * dt;
     nodes.y[n] += v.y * dt;
     NodeWork& w = ledger.work[n];
