@@ -1,9 +1,12 @@
 //! \file material.cpp
-//! \brief The paper's rock preset (Table 2) and material validation.
+//! \brief The paper's rock preset (Table 2), and the validation of the material and of the solver's options.
 #include "blastsim/fdem/material.hpp"
+#include "blastsim/fdem/rock_types.hpp"
 
 #include "blastsim/core/error.hpp"
 
+#include <cmath>
+#include <sstream>
 #include <string>
 
 namespace blastsim::fdem {
@@ -35,6 +38,20 @@ void RockMaterial::validate() const {
   require(fracture_energy_mode1 > 0, "fracture_energy_mode1", fracture_energy_mode1, "> 0 J/m2");
   require(fracture_energy_mode2 > 0, "fracture_energy_mode2", fracture_energy_mode2, "> 0 J/m2");
   require(contact_friction >= 0, "contact_friction", contact_friction, ">= 0");
+}
+
+
+void RockOptions::validate() const {
+  auto fail = [](const char* key, double value, const char* allowed) {
+    std::ostringstream os;
+    os << key << " = " << value << ": must be " << allowed;
+    throw InputError(os.str());
+  };
+  if (!(joint_penalty_factor > 0)) fail("joint_penalty_factor", joint_penalty_factor, "> 0 (p / E, typically 10 to 100)");
+  if (!(contact_penalty_factor > 0)) fail("contact_penalty_factor", contact_penalty_factor, "> 0 (p_c / E)");
+  if (!(damping_ratio >= 0 && damping_ratio < 1)) fail("damping_ratio", damping_ratio, "in [0, 1)");
+  if (!(contact_buffer > 0 && contact_buffer <= 2)) fail("contact_buffer", contact_buffer, "in (0, 2]");
+  if (!std::isfinite(gravity[0]) || !std::isfinite(gravity[1])) fail("gravity", gravity[0], "finite");
 }
 
 }  // namespace blastsim::fdem

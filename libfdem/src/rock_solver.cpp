@@ -21,51 +21,11 @@
 
 namespace blastsim::fdem {
 
-void RockOptions::validate() const {
-  auto fail = [](const char* key, double value, const char* allowed) {
-    std::ostringstream os;
-    os << key << " = " << value << ": must be " << allowed;
-    throw InputError(os.str());
-  };
-  if (!(joint_penalty_factor > 0)) fail("joint_penalty_factor", joint_penalty_factor, "> 0 (p / E, typically 10 to 100)");
-  if (!(contact_penalty_factor > 0)) fail("contact_penalty_factor", contact_penalty_factor, "> 0 (p_c / E)");
-  if (!(damping_ratio >= 0 && damping_ratio < 1)) fail("damping_ratio", damping_ratio, "in [0, 1)");
-  if (!(contact_buffer > 0 && contact_buffer <= 2)) fail("contact_buffer", contact_buffer, "in (0, 2]");
-  if (!std::isfinite(gravity[0]) || !std::isfinite(gravity[1])) fail("gravity", gravity[0], "finite");
-}
 
 namespace {
 
 double length(const std::array<double, 2>& a, const std::array<double, 2>& b) {
   return std::hypot(b[0] - a[0], b[1] - a[1]);
-}
-
-//! The joint law's parameters of a joint of length h [m] with properties q at joint penalty p [Pa].
-JointStrength joint_strength(const JointProperties& q, double h, double p) {
-  if (!(q.tensile_strength > 0) || !(q.cohesion > 0) || !(q.fracture_energy_mode1 > 0) ||
-      !(q.fracture_energy_mode2 > 0) || !(q.friction_angle >= 0 && q.friction_angle < M_PI / 2) ||
-      !std::isfinite(q.tensile_strength + q.cohesion + q.fracture_energy_mode1 + q.fracture_energy_mode2))
-    throw InputError("strengths and fracture energies must be positive and finite, the friction angle in [0, 90) deg");
-  JointStrength s;
-  s.tensile_strength = q.tensile_strength;
-  s.cohesion = q.cohesion;
-  s.tan_friction = std::tan(q.friction_angle);
-  s.peak_opening = 2 * h * q.tensile_strength / p;
-  s.peak_slip = h * q.cohesion / p;
-  s.opening_softening =
-      softening_length(q.fracture_energy_mode1, q.tensile_strength, opening_pre_peak_work(s.tensile_strength, s.peak_opening));
-  s.slip_softening = softening_length(q.fracture_energy_mode2, q.cohesion, slip_pre_peak_work(s.cohesion, s.peak_slip));
-  return s;
-}
-
-//! joint_strength() for joint j with its own properties: an error names the joint and its strength.
-JointStrength own_joint_strength(int j, const JointProperties& q, double h, double p) {
-  try {
-    return joint_strength(q, h, p);
-  } catch (const InputError& e) {
-    throw InputError("joint " + std::to_string(j) + " (its own strength, f_t = " + std::to_string(q.tensile_strength) +
-                     " Pa): " + e.what());
-  }
 }
 
 }  // namespace
@@ -153,7 +113,7 @@ RockSolver::RockSolver(const FdemTopology& topo, const RockMaterial& material, c
     joint_nodes_host_.push_back({J.a0, J.a1, J.b0, J.b1});
     const double h = length(topo.node_positions[J.a0], topo.node_positions[J.a1]);
     strength[j] = joint_properties.empty() ? joint_strength(uniform, h, p_joint)
-                                           : own_joint_strength(j, joint_properties[j], h, p_joint);
+                                           : joint_strength(joint_properties[j], h, p_joint, j);
     joint_length[j] = h;
   }
   copy_from_host(a.edge_params.neighbour, slot_neighbour), copy_from_host(a.edge_params.joint, slot_joint);
@@ -187,7 +147,7 @@ void RockSolver::set_joint_properties(const std::vector<int>& joints, const Join
   const double p_joint = options_.joint_penalty_factor * material_.youngs_modulus;
   for (int j : joints) {
     if (j < 0 || j >= joints_) throw InputError("joint " + std::to_string(j) + " does not exist");
-    strength[j] = own_joint_strength(j, q, length[j], p_joint);
+    strength[j] = joint_strength(q, length[j], p_joint, j);
   }
   copy_from_host(a_->joint_params.strength, strength);
 }

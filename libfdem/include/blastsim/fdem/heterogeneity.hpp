@@ -4,6 +4,7 @@
 //! independently per joint or from a spatially correlated random field of the joint's position.
 #pragma once
 
+#include "blastsim/fdem/joint_kernels.hpp"
 #include "blastsim/fdem/material.hpp"
 
 #include <array>
@@ -20,6 +21,11 @@ struct JointProperties {
   double fracture_energy_mode1 = 0;  //!< G_I [J/m2]
   double fracture_energy_mode2 = 0;  //!< G_II [J/m2]
 };
+
+//! The joint law's parameters of a joint of length h [m] with properties q at the joint penalty p [Pa] (the peak
+//! opening and slip of the penalty, the softening lengths from the fracture energies). Throws InputError for
+//! properties the law cannot take, naming `joint` (when >= 0: a joint with its own strength) and its strength.
+JointStrength joint_strength(const JointProperties& q, double h, double p, int joint = -1);
 
 //! The material's own joint properties (every joint of uniform rock).
 JointProperties joint_properties_of(const RockMaterial& material);
