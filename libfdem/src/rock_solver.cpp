@@ -379,7 +379,6 @@ void RockSolver::set_probes(const std::vector<std::array<double, 2>>& points, co
 
 std::vector<ProbeSample> RockSolver::probe_samples() const { return probes_->samples(a_->nodes.read()); }
 
-int RockSolver::probe_count() const { return probes_->count(); }
 
 RockView RockSolver::view() {
   return {std::as_const(*this).view(), a_->edge_loads.view()};
@@ -426,10 +425,6 @@ RockEnergies RockSolver::energies() const {
   e.broken_joints = static_cast<int>(reduce_sum("fdem.broken", joints_, 0.0, BrokenJointLength{jp, js, false}));
   e.crack_length = reduce_sum("fdem.crack_length", joints_, 0.0, BrokenJointLength{jp, js, true});
   return e;
-}
-
-std::array<double, 2> RockSolver::support_reaction(const std::vector<int>& nodes) const {
-  return support_reactions({nodes})[0];
 }
 
 std::vector<std::array<double, 2>> RockSolver::support_reactions(const std::vector<std::vector<int>>& groups) const {

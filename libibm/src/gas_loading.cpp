@@ -90,7 +90,7 @@ void GasLoading::keep_nodes(CouplingContext& ctx) {
     to->resize(nodes);
     for_each_index("ibm.face_work.nodes", nodes, CopyValues{from, device_ptr(*to)});
   }
-  dt_prev_ = ctx.rock.previous_dt();
+  dt_prev_ = ctx.rock.last_step();
 }
 
 void GasLoading::before_gas(CouplingContext& ctx, double) {

@@ -73,7 +73,7 @@ WeakPlaneResult compress(double beta, double c_w, double phi_w, bool intact_plan
   while (s.time() < 6.0e-3) {  // until the load has fallen to half its peak (or 6 ms: 0.3 mm, 2e-3 strain)
     if (confining > 0) s.set_pressure_scale(half_cosine_ramp(s.time(), 0.5e-3));
     s.step(dt);
-    const double f = s.support_reaction(bottom)[1] / W;
+    const double f = s.support_reactions({bottom})[0][1] / W;
     if (f > r.strength) r.strength = f, r.t_peak = s.time();
     if (f < 0.5 * r.strength && r.strength > 1e6) break;
   }

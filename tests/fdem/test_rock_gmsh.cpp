@@ -117,7 +117,7 @@ BrazilianResult brazilian(double R, double h, bool joints_along_diameter) {
   s.prescribe_velocity({top[0]}, true, false, 0, 0);  // no rigid drift along x
   double peak = 0, t_peak = 0;
   run_to(s, 2.2e-3, 0.9 * s.stable_dt(), [&] {
-    const double f = 0.5 * (s.support_reaction(bottom)[1] - s.support_reaction(top)[1]);  // compressive load [N/m]
+    const double f = 0.5 * (s.support_reactions({bottom})[0][1] - s.support_reactions({top})[0][1]);  // compressive load [N/m]
     if (f > peak) peak = f, t_peak = s.time();
   });
   const RockSnapshot snap = s.snapshot();
@@ -182,7 +182,7 @@ UniaxialResult uniaxial(double W, double H, double h, bool plane_at_mc_angle) {
   s.prescribe_velocity({bottom[0]}, true, false, 0, 0);
   double peak = 0, t_peak = 0;
   run_to(s, 2.2e-3, 0.9 * s.stable_dt(), [&] {
-    const double f = s.support_reaction(bottom)[1] / W;
+    const double f = s.support_reactions({bottom})[0][1] / W;
     if (f > peak) peak = f, t_peak = s.time();
   });
   const RockSnapshot snap = s.snapshot();

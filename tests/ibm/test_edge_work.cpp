@@ -75,7 +75,7 @@ TEST_CASE("I9 paid edge pressures: the edges' work as the coupling charges it eq
     const fdem::RockSnapshot start = rock.snapshot();
     DeviceVector<double> x0, y0, vx0, vy0;
     copy_from_host(x0, start.x), copy_from_host(y0, start.y), copy_from_host(vx0, start.vx), copy_from_host(vy0, start.vy);
-    const double dt_prev = rock.previous_dt(), before = rock.energies().pressure_work;
+    const double dt_prev = rock.last_step(), before = rock.energies().pressure_work;
     for (int k = 0; k < K; ++k) rock.step(dt);  // the rock's substeps of one coupled step
     const double ledger = rock.energies().pressure_work - before;
     const double charged = kernel_work(rock, x0, y0, vx0, vy0, dt, dt_prev);

@@ -47,10 +47,6 @@ class RockSolver {
   //! by 4 c_p^2 / h^2 (h its smallest altitude) + 6 sqrt(2) p / (rho A) (joint penalty p) + 36 p_c / (rho h^2)
   //! (contact penalty p_c, when contact is on), reduced for damping by sqrt(1 + beta^2) - beta.
   double stable_dt() const { return stable_dt_; }
-  //! The length of the last step taken [s] (0 before the first): the node ledger's trapezoid weighs the velocity
-  //! at the start of the next step with it (docs/fdem-solver.md, "Energies").
-  double previous_dt() const { return dt_prev_; }
-
   //! Advances by dt [s]. Throws InputError if dt > stable_dt(), InstabilityError on a non-finite state.
   //! One step = triangle_forces(), joint_forces(), contact_forces(), update_nodes(), then the speed check:
   //! advance(dt, 1), then finish_motion() with the largest node speed (the host waits for it).
@@ -118,9 +114,8 @@ class RockSolver {
   // --- diagnostics and output (host copies; each costs a device sync) ---
   RockEnergies energies() const;
   RockSnapshot snapshot() const;
-  //! Total force [N/m] that the prescribed-velocity supports exerted on `nodes` in the last step.
-  std::array<double, 2> support_reaction(const std::vector<int>& nodes) const;
-  //! support_reaction() of each group of nodes, from one copy of the support forces.
+  //! Total force [N/m] that the prescribed-velocity supports exerted on each group of nodes in the last step (one
+  //! copy of the support forces).
   std::vector<std::array<double, 2>> support_reactions(const std::vector<std::vector<int>>& groups) const;
   //! Sum over nodes of the contact force magnitude [N/m] of the last step (0: nothing touches).
   double contact_force_norm() const;
@@ -156,7 +151,6 @@ class RockSolver {
   void set_probes(const std::vector<std::array<double, 2>>& points, const std::vector<double>& until = {});
   //! Per probe: its current velocity and the peak so far (host copy).
   std::vector<ProbeSample> probe_samples() const;
-  int probe_count() const;
 
   //! Number of contact-grid rebuilds so far (broad phase).
   long contact_rebuilds() const;
