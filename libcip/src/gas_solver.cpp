@@ -39,12 +39,8 @@ void GasSolver::accumulate_boundary_outflow(double dt) {
 }
 
 BoundaryOutflow GasSolver::boundary_outflow() const {
-  const OutflowLedger* l = a_->outflow_ledger.read().face;
   const TotalsSum t = reduce_sum("cip.outflow_total", 2 * static_cast<index_t>(grid_.nx + grid_.ny),
-                                 TotalsSum{0, 0, 0, 0, 0, 0}, [=] BLAST_HD(index_t k) {
-                                   const OutflowLedger& e = l[k];
-                                   return TotalsSum{e.mass, e.momentum_x, e.momentum_y, e.energy, 0.0, e.products_mass};
-                                 });
+                                 TotalsSum{0, 0, 0, 0, 0, 0}, OutflowLedgerTotals{a_->outflow_ledger.read()});
   BoundaryOutflow out;
   out.mass = t.m;
   out.momentum_x = t.mx;
@@ -287,12 +283,12 @@ std::vector<GasSample> GasSolver::sample(const std::vector<std::array<double, 2>
     xy[2 * k] = points[k][0];
     xy[2 * k + 1] = points[k][1];
   }
-  DeviceVector<double> xy_d;
-  copy_from_host(xy_d, xy);
-  DeviceVector<GasSample> out_d(points.size());
+  detail::GasSamplesArrays samples;
+  copy_from_host(samples.xy, xy);
+  samples.out.resize(points.size());
   for_each_index("cip.sample", static_cast<index_t>(points.size()),
-                 SampleKernel{state(), material_fields(), grid_, materials_, device_ptr(xy_d), device_ptr(out_d)});
-  return blastsim::to_host(out_d);
+                 SampleKernel{state(), material_fields(), grid_, materials_, samples.view()});
+  return blastsim::to_host(samples.out);
 }
 
 double GasSolver::traced_reach(std::array<double, 2> center, double min_fraction, double min_pressure,
@@ -415,18 +411,15 @@ void GasSolver::write_checkpoint(CheckpointWriter& w) const {
 }
 
 double GasSolver::immersed_face_work() const {
-  const double* wu = device_ptr(a_->ledgers.solid_work_u);
-  const double* wv = device_ptr(a_->ledgers.solid_work_v);
-  return grid_.dx * grid_.dy *
-         reduce_sum("cip.solid_work", static_cast<index_t>(a_->ledgers.solid_work_u.size()), 0.0,
-                    [=] BLAST_HD(index_t k) { return wu[k] + wv[k]; });
+  const detail::GasLedgers<Access::read> l = a_->ledgers.read(grid_.padded_shape());
+  return grid_.dx * grid_.dy * reduce_sum("cip.solid_work", static_cast<index_t>(a_->ledgers.solid_work_u.size()), 0.0,
+                                          PaddedEntries{l.solid_work_u, l.solid_work_v});
 }
 
 double GasSolver::positivity_energy() const {
-  const double* a = device_ptr(a_->ledgers.positivity_heat);
-  return grid_.dx * grid_.dy *
-         reduce_sum("cip.positivity_energy", static_cast<index_t>(a_->ledgers.positivity_heat.size()), 0.0,
-                    [=] BLAST_HD(index_t k) { return a[k]; });
+  const detail::GasLedgers<Access::read> l = a_->ledgers.read(grid_.padded_shape());
+  return grid_.dx * grid_.dy * reduce_sum("cip.positivity_energy", static_cast<index_t>(a_->ledgers.positivity_heat.size()),
+                                          0.0, PaddedEntries{l.positivity_heat, {}});
 }
 
 void GasSolver::read_checkpoint(CheckpointReader& r) {

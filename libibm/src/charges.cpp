@@ -129,12 +129,7 @@ std::vector<double> Charges::pressures(const cip::GasSolver& gas, double ambient
     const int i0 = box.i0, j0 = box.j0, ni = box.i1 - box.i0 + 1;
     const double cx = c.center[0], cy = c.center[1], r = c.hole_radius;
     const Vec2Sum sum = reduce_sum("ibm.charge.pressure", box.count(), Vec2Sum{0, 0},
-                                   [=] BLAST_HD(index_t k) {
-                                     const int i = i0 + static_cast<int>(k % ni), j = j0 + static_cast<int>(k / ni);
-                                     const double x = g.x_min + (i + 0.5) * g.dx - cx, y = g.y_min + (j + 0.5) * g.dy - cy;
-                                     if (!active(i, j) || x * x + y * y > r * r) return Vec2Sum{0, 0};
-                                     return Vec2Sum{cip::cell_pressure(mat, m, s.rho.f(i, j), s.e.f(i, j), i, j), 1.0};
-                                   });
+                                   HoleCellPressure{g, mat, m, s, active, i0, j0, ni, cx, cy, r});
     out.push_back(sum.y > 0 ? sum.x / sum.y : ambient_pressure);
   }
   return out;
@@ -142,17 +137,13 @@ std::vector<double> Charges::pressures(const cip::GasSolver& gas, double ambient
 
 std::vector<double> Charges::energies(const cip::GasSolver& gas) const {
   std::vector<double> out;
-  const int* owner = a_->cells.view().charge;
-  const ChargeLedger* led = a_->ledger.read().burn;
   const cip::GasGrid g = gas.grid();
   const int nx = g.nx;
   for (std::size_t k = 0; k < charges_.size(); ++k) {
     const CellBox box = cells_around(g, charges_[k].center, charges_[k].radius);  // its cells lie in there
     const int kk = static_cast<int>(k), i0 = box.i0, j0 = box.j0, ni = box.i1 - box.i0 + 1;
-    out.push_back(reduce_sum("ibm.charge.energy", box.count(), 0.0, [=] BLAST_HD(index_t b) {
-      const index_t c = static_cast<index_t>(j0 + b / ni) * nx + i0 + b % ni;
-      return owner[c] == kk ? led[c].detonation_energy : 0.0;
-    }));
+    out.push_back(reduce_sum("ibm.charge.energy", box.count(), 0.0,
+                             ChargeCellEnergy{a_->cells.view(), a_->ledger.read(), nx, i0, j0, ni, kk}));
   }
   return out;
 }
@@ -170,9 +161,7 @@ void Charges::add_diagnostics(const CouplingContext& /*ctx*/, CouplingDiagnostic
   q.detonation_energy = total(&ChargeLedger::detonation_energy);
   q.replaced_mass = total(&ChargeLedger::replaced_mass);
   q.replaced_energy = total(&ChargeLedger::replaced_energy);
-  q.burnt_cells = std::lround(reduce_sum("ibm.charge.burnt", n, 0.0, [=] BLAST_HD(index_t k) {
-    return cells.charge[k] >= 0 && cells.burn_time[k] <= until ? 1.0 : 0.0;
-  }));
+  q.burnt_cells = std::lround(reduce_sum("ibm.charge.burnt", n, 0.0, BurntChargeCell{cells, until}));
   d.energy_added += q.detonation_energy - q.replaced_energy;
 }
 

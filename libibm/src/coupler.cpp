@@ -132,9 +132,7 @@ long GasRockCoupler::inactive_cells() const {
   const cip::GasGrid g = gas_.grid();
   const Field2D<const std::uint8_t> active = gas_.immersed_boundary().cell_active;
   const int nx = g.nx;
-  return static_cast<long>(reduce_sum("ibm.inactive", static_cast<index_t>(g.nx) * g.ny, 0.0, [=] BLAST_HD(index_t k) {
-    return active(static_cast<int>(k % nx), static_cast<int>(k / nx)) ? 0.0 : 1.0;
-  }));
+  return static_cast<long>(reduce_sum("ibm.inactive", static_cast<index_t>(g.nx) * g.ny, 0.0, InactiveCell{active, nx}));
 }
 
 void GasRockCoupler::write_checkpoint(CheckpointWriter& w) const {

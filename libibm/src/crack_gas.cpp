@@ -145,21 +145,8 @@ double CrackGas::stable_dt() const {
   const CrackSegments<Access::read> seg = a.segments.read();
   double rate = reduce_max("crack.rate", segments_, 0.0, SegmentRateOf{mat_, geo, seg});
   // A mouth's reservoir gas enters at up to its vacuum front speed.
-  const CrackGraph g = a.graph.view();
-  const CrackMouths<Access::read> mouths = a.mouths.read();
-  const cip::GasMaterials mat = mat_;
-  rate = std::max(rate, reduce_max("crack.mouth_rate", junctions_, 0.0, [=] BLAST_HD(index_t ji) {
-                    const int J = static_cast<int>(ji);
-                    if (!mouths.open[J]) return 0.0;
-                    const ChannelPrimitive r = mouths.reservoir[J];
-                    const double speed = r.c * fmax(1.0, 2.0 / mat.mixture_gruneisen(r.alpha));
-                    double best = 0.0;
-                    for (int k = g.junction_offset[J]; k < g.junction_offset[J + 1]; ++k) {
-                      const int s = g.junction_entry[k] / 2;
-                      if (seg.kind[s] == kSegmentGas) best = fmax(best, speed / geo.length[s]);
-                    }
-                    return best;
-                  }));
+  rate = std::max(rate, reduce_max("crack.mouth_rate", junctions_, 0.0,
+                                   MouthRateOf{mat_, a.graph.view(), geo, seg, a.mouths.read()}));
   if (rate >= kInvalidSegmentRate) return 0.0;  // a segment's state is not valid (SegmentRateOf)
   return rate > 0 ? options_.courant / rate : std::numeric_limits<double>::infinity();
 }
@@ -224,19 +211,17 @@ std::string CrackGas::describe_invalid_segment() const {
 CrackGasTotals CrackGas::totals(double reference_pressure) const {
   CrackGasTotals t;
   const CrackSegments<Access::read> seg = a_->segments.read();
-  auto sum = [&](const char* label, auto f) { return reduce_sum(label, segments_, 0.0, f); };
-  t.mass = sum("crack.mass", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.cons[s].m : 0.0; });
-  t.energy = sum("crack.energy", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.cons[s].E : 0.0; });
-  t.products_mass =
-      sum("crack.products", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.cons[s].m1 : 0.0; });
-  t.volume = sum("crack.volume", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.volume[s] : 0.0; });
-  t.gas_segments =
-      std::lround(sum("crack.count", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? 1.0 : 0.0; }));
   const double wet = 1.5 * reference_pressure;
-  t.wet_segments = std::lround(sum(
-      "crack.wet", [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas && seg.prim[s].p > wet ? 1.0 : 0.0; }));
-  t.max_pressure = reduce_max("crack.max_p", segments_, 0.0,
-                              [=] BLAST_HD(index_t s) { return seg.kind[s] == kSegmentGas ? seg.prim[s].p : 0.0; });
+  auto sum = [&](const char* label, GasSegmentValue::What what) {
+    return reduce_sum(label, segments_, 0.0, GasSegmentValue{seg, what, wet});
+  };
+  t.mass = sum("crack.mass", GasSegmentValue::mass);
+  t.energy = sum("crack.energy", GasSegmentValue::energy);
+  t.products_mass = sum("crack.products", GasSegmentValue::products_mass);
+  t.volume = sum("crack.volume", GasSegmentValue::volume);
+  t.gas_segments = std::lround(sum("crack.count", GasSegmentValue::count));
+  t.wet_segments = std::lround(sum("crack.wet", GasSegmentValue::wet_count));
+  t.max_pressure = reduce_max("crack.max_p", segments_, 0.0, GasSegmentValue{seg, GasSegmentValue::pressure, wet});
   return t;
 }
 

@@ -161,44 +161,18 @@ void CrackGasCoupling::after_rock(CouplingContext& ctx, double /*dt*/, int /*roc
 
 double CrackGasCoupling::outer_blast_fraction(const fdem::RockSolver& rock, std::array<double, 2> center, double radius,
                                               double min_pressure) const {
-  const CrackGraph g = crack_->graph();
-  const CrackSegments<Access::read> seg = crack_->segments();
   const fdem::RockReadView view = rock.view();
-  const fdem::JointNodes* joint = view.joint.nodes;
-  const fdem::NodeMotion<Access::read> nodes = view.nodes;
-  const std::uint8_t* outline = a_->places.view().outline;
-  const double cx = center[0], cy = center[1], r2 = radius * radius;
-  return reduce_max("ibm.crack.outer_blast", crack_->segment_count(), 0.0, [=] BLAST_HD(index_t si) {
-    const int s = static_cast<int>(si);
-    if (seg.kind[s] != kSegmentGas || !(seg.prim[s].p >= min_pressure)) return 0.0;
-    const fdem::JointNodes jn = joint[s];
-    double y = 0.0;
-    for (int e = 0; e < 2; ++e) {
-      if (!outline[g.segment_junction[2 * s + e]]) continue;
-      const int node = e == 0 ? jn.a0 : jn.a1;
-      const double dx = nodes.x[node] - cx, dy = nodes.y[node] - cy;
-      if (dx * dx + dy * dy > r2) y = seg.prim[s].Y;
-    }
-    return y;
-  });
+  return reduce_max("ibm.crack.outer_blast", crack_->segment_count(), 0.0,
+                    OuterBlastFraction{crack_->graph(), crack_->segments(), view.joint, view.nodes, a_->places.view(),
+                                       center[0], center[1], radius * radius, min_pressure});
 }
 
 double CrackGasCoupling::blast_front(const fdem::RockSolver& rock, std::array<double, 2> center, double min_fraction,
                                      double min_pressure) const {
-  const CrackSegments<Access::read> seg = crack_->segments();
   const fdem::RockReadView view = rock.view();
-  const fdem::JointNodes* joint = view.joint.nodes;
-  const fdem::NodeMotion<Access::read> x = view.nodes;
-  const double cx = center[0], cy = center[1];
-  return reduce_max("ibm.crack.blast_front", static_cast<index_t>(crack_->segment_count()), 0.0, [=] BLAST_HD(index_t si) {
-    const int s = static_cast<int>(si);
-    const ChannelPrimitive& P = seg.prim[s];
-    if (seg.kind[s] != kSegmentGas || !(P.Y >= min_fraction) || !(P.p >= min_pressure)) return 0.0;
-    const fdem::JointNodes jn = joint[s];
-    const double dx = 0.25 * (x.x[jn.a0] + x.x[jn.a1] + x.x[jn.b0] + x.x[jn.b1]) - cx;
-    const double dy = 0.25 * (x.y[jn.a0] + x.y[jn.a1] + x.y[jn.b0] + x.y[jn.b1]) - cy;
-    return sqrt(dx * dx + dy * dy);
-  });
+  return reduce_max("ibm.crack.blast_front", static_cast<index_t>(crack_->segment_count()), 0.0,
+                    BlastFrontOf{crack_->segments(), view.joint, view.nodes, center[0], center[1], min_fraction,
+                                 min_pressure});
 }
 
 void CrackGasCoupling::add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const {
@@ -217,12 +191,9 @@ void CrackGasCoupling::add_diagnostics(const CouplingContext& ctx, CouplingDiagn
                                     FieldOf<ChannelConserved>{given, &ChannelConserved::m});
   d.crack.to_grid_energy = reduce_sum("ibm.crack.to_grid_energy", records, 0.0,
                                       FieldOf<ChannelConserved>{given, &ChannelConserved::E});
-  const double* walls = a_->walls.read().wall_work;
-  d.crack.wall_work = reduce_sum("ibm.crack.wall_work", crack_->segment_count(), 0.0,
-                                 [=] BLAST_HD(index_t s) { return walls[s]; });
-  const double* unpaid = a_->walls.read().unpaid_work;
-  d.crack.unpaid_work = reduce_sum("ibm.crack.unpaid_work", crack_->segment_count(), 0.0,
-                                   [=] BLAST_HD(index_t s) { return unpaid[s]; });
+  d.crack.wall_work = reduce_sum("ibm.crack.wall_work", crack_->segment_count(), 0.0, WallWorkOf{a_->walls.read(), false});
+  d.crack.unpaid_work =
+      reduce_sum("ibm.crack.unpaid_work", crack_->segment_count(), 0.0, WallWorkOf{a_->walls.read(), true});
   d.energy_held += d.crack.energy;
 }
 

@@ -1,6 +1,6 @@
 //! \file boundary_kernels.hpp
 //! \brief Device-side boundary helpers of the gas step: what the ghost fill and the outflow faces need
-//! (BoundaryContext) and the characteristic outflow face velocity from a cell state.
+//! (BoundaryContext), the characteristic outflow face velocity from a cell state, and the ghost-fill kernels.
 #pragma once
 
 #include "blastsim/cip/boundary.hpp"
@@ -42,5 +42,130 @@ BLAST_HD inline double outflow_face_from_state(const GasState<A>& s, const GasGr
   return outflow_face_velocity(sign * at(w, fi), ctx.reference.velocity[r], p_face, ctx.reference.pressure[r], rho,
                                b_state.c);
 }
+
+
+// ---- the ghost fill (fill_ghosts(), fill_material_ghosts(): boundary.cpp) ----
+
+namespace detail {
+
+//! Applies the ghost rule to one CIP unknown at ghost index k along x (axis 0) or y (axis 1).
+BLAST_HD inline void fill_one(const CipFieldView& F, int axis, int k, int t, int n, bool face_centred,
+                              BoundaryKind kind, double parity) {
+  const GhostSource s = ghost_source(k, n, face_centred, kind, parity);
+  if (axis == 0) {
+    F.f(k, t) = s.value_factor * F.f(s.source, t);
+    F.gx(k, t) = s.normal_factor * F.gx(s.source, t);
+    F.gy(k, t) = s.tangent_factor * F.gy(s.source, t);
+  } else {
+    F.f(t, k) = s.value_factor * F.f(t, s.source);
+    F.gy(t, k) = s.normal_factor * F.gy(t, s.source);
+    F.gx(t, k) = s.tangent_factor * F.gx(t, s.source);
+  }
+}
+
+//! Does the ghost rule touch index k of a variable with this centring? Ghost indices always; the
+//! boundary face itself only for a wall (normal velocity zero) or the far periodic face (copy of face 0).
+BLAST_HD inline bool is_ghost(int k, int n, bool face_centred, BoundaryKind kind) {
+  if (!face_centred) return k < 0 || k >= n;
+  if (k < 0 || k > n) return true;
+  if (kind == BoundaryKind::wall) return k == 0 || k == n;
+  if (kind == BoundaryKind::periodic) return k == n;
+  return false;
+}
+
+//! One thread per (ghost column, row): fills all four unknowns along x. Columns: -g..-1, 0 (boundary
+//! face), nx..nx+g (nx is the first cell ghost and the last face).
+//! Sets an outflow boundary face (value from outflow_face_from_state(), zero normal derivative).
+BLAST_HD inline void set_outflow_face(const CipFieldView& F, const GasStateView& s, const GasGrid& g,
+                                      const BoundaryContext& ctx, int side, int t) {
+  const bool xside = side == left || side == right;
+  const bool low = side == left || side == bottom;
+  const int k = low ? 0 : (xside ? g.nx : g.ny), ki = low ? 1 : k - 1;
+  const double w = (low ? -1.0 : 1.0) * outflow_face_from_state(s, g, ctx, side, t);
+  if (xside) {
+    F.f(k, t) = w;
+    F.gx(k, t) = 0.0;
+    F.gy(k, t) = F.gy(ki, t);
+  } else {
+    F.f(t, k) = w;
+    F.gy(t, k) = 0.0;
+    F.gx(t, k) = F.gx(t, ki);
+  }
+}
+
+struct FillGhostsX {
+  GasStateView s;
+  GasGrid grid;
+  BoundaryContext ctx;
+  BLAST_HD void operator()(int c, int t) const {
+    const int g = GasGrid::ghost, nx = grid.nx;
+    const int k = c < g + 1 ? c - g : nx + (c - g - 1);  // c in [0, 2g + 2)
+    const BoundaryKind kind = kind_of(ctx.bc, k <= 0 ? left : right);
+    if (is_ghost(k, nx, false, kind)) {
+      fill_one(s.rho, 0, k, t, nx, false, kind, 1.0);
+      fill_one(s.e, 0, k, t, nx, false, kind, 1.0);
+      fill_one(s.v, 0, k, t, nx, false, kind, 1.0);
+    }
+    if (is_ghost(k, nx, true, kind)) fill_one(s.u, 0, k, t, nx, true, kind, -1.0);
+  }
+};
+
+//! The outflow boundary faces go first: the ghost faces beyond them copy them.
+struct FillOutflowFaces {
+  GasStateView s;
+  GasGrid grid;
+  BoundaryContext ctx;
+  BLAST_HD void operator()(index_t k) const {
+    const int nx = grid.nx, ny = grid.ny;
+    if (k < 2 * ny) {
+      const int side = k < ny ? left : right, t = static_cast<int>(k < ny ? k : k - ny);
+      if (t < ny && kind_of(ctx.bc, side) == BoundaryKind::outflow) set_outflow_face(s.u, s, grid, ctx, side, t);
+    } else {
+      const index_t m = k - 2 * ny;
+      const int side = m < nx ? bottom : top, t = static_cast<int>(m < nx ? m : m - nx);
+      if (kind_of(ctx.bc, side) == BoundaryKind::outflow) set_outflow_face(s.v, s, grid, ctx, side, t);
+    }
+  }
+};
+
+//! Same along y for every column (x ghosts included), so corners follow from the x pass.
+struct FillGhostsY {
+  GasStateView s;
+  int ny;
+  BoundaryKind lo, hi;
+  BLAST_HD void operator()(int t, int c) const {
+    const int g = GasGrid::ghost;
+    const int k = c < g + 1 ? c - g : ny + (c - g - 1);
+    const BoundaryKind kind = k <= 0 ? lo : hi;
+    if (is_ghost(k, ny, false, kind)) {
+      fill_one(s.rho, 1, k, t, ny, false, kind, 1.0);
+      fill_one(s.e, 1, k, t, ny, false, kind, 1.0);
+      fill_one(s.u, 1, k, t, ny, false, kind, 1.0);
+    }
+    if (is_ghost(k, ny, true, kind)) fill_one(s.v, 1, k, t, ny, true, kind, -1.0);
+  }
+};
+
+//! Ghosts of the material fields (cell-centred values without derivatives) along x (axis 0) or y (axis 1):
+//! c runs over the 2 g ghost indices, t over the rows (x pass) or every padded column (y pass).
+struct FillMaterialGhosts {
+  MaterialView m;
+  int axis, n;
+  BoundaryKind lo, hi;
+  BLAST_HD void operator()(int c, int t) const {
+    const int g = GasGrid::ghost;
+    const int k = c < g ? c - g : n + (c - g);
+    const GhostSource src = ghost_source(k, n, false, k < 0 ? lo : hi, 1.0);
+    if (axis == 0) {
+      m.alpha(k, t) = m.alpha(src.source, t);
+      m.m1(k, t) = m.m1(src.source, t);
+    } else {
+      m.alpha(t, k) = m.alpha(t, src.source);
+      m.m1(t, k) = m.m1(t, src.source);
+    }
+  }
+};
+
+}  // namespace detail
 
 }  // namespace blastsim::cip

@@ -380,15 +380,20 @@ BLAST_HD inline double bilinear(Field2D<const double> F, double x0, double y0, d
          sx * sy * F(i + 1, j + 1);
 }
 
+//! The points at which the gas is sampled and the samples (GasSolver::sample()).
+#define BLASTSIM_GAS_SAMPLES(X)                                \
+  X(double, xy, "x and y [m] of each point, two entries a point") \
+  X(GasSample, out, "the sample at each point")
+BLASTSIM_VIEW_GROUP(GasSamples, BLASTSIM_GAS_SAMPLES)
+
 struct SampleKernel {
   GasStateReadView s;
   MaterialReadView m;
   GasGrid g;
   GasMaterials mat;
-  const double* xy;
-  GasSample* out;
+  GasSamples<Access::read_write> samples;  //!< reads xy; writes out
   BLAST_HD void operator()(index_t k) const {
-    const double x = xy[2 * k], y = xy[2 * k + 1];
+    const double x = samples.xy[2 * k], y = samples.xy[2 * k + 1];
     const double xc = g.x_min + 0.5 * g.dx, yc = g.y_min + 0.5 * g.dy;
     Field2D<const double> rho{s.rho.f.data, s.rho.f.shape}, e{s.e.f.data, s.e.f.shape};
     Field2D<const double> u{s.u.f.data, s.u.f.shape}, v{s.v.f.data, s.v.f.shape};
@@ -406,7 +411,7 @@ struct SampleKernel {
     }
     if (mat.two) r.alpha = bilinear(m.alpha, xc, yc, g.dx, g.dy, g.nx - 1, g.ny - 1, x, y);
     r.p = mat.pressure(r.rho, r.e, r.alpha, m1);
-    out[k] = r;
+    samples.out[k] = r;
   }
 };
 
@@ -453,6 +458,21 @@ struct BoundaryFlowKernel {
 //! The outflow ledger: one record per boundary face (OutflowReference's order), checkpointed.
 #define BLASTSIM_GAS_OUTFLOW_LEDGER(X) X(OutflowLedger, face, "what left through each boundary face since initialise()")
 BLASTSIM_VIEW_GROUP(OutflowLedgers, BLASTSIM_GAS_OUTFLOW_LEDGER)
+
+//! Boundary face k's outflow-ledger record as a TotalsSum term (GasSolver::boundary_outflow()).
+struct OutflowLedgerTotals {
+  OutflowLedgers<Access::read> ledger;
+  BLAST_HD TotalsSum operator()(index_t k) const {
+    const OutflowLedger& e = ledger.face[k];
+    return TotalsSum{e.mass, e.momentum_x, e.momentum_y, e.energy, 0.0, e.products_mass};
+  }
+};
+
+//! Entry k of a padded array, or the sum of two (a ledger's total over the padded shape; `b` without data: a alone).
+struct PaddedEntries {
+  Field2D<const double> a, b;
+  BLAST_HD double operator()(index_t k) const { return b.data ? a.data[k] + b.data[k] : a.data[k]; }
+};
 
 //! Adds dt times what crosses boundary face k (BoundaryFlowKernel) to that face's outflow-ledger record: one
 //! thread a face, so no atomics, and the ledger stays on the device.

@@ -10,6 +10,7 @@
 #include "blastsim/core/field2d.hpp"
 #include "blastsim/core/macros.hpp"
 #include "blastsim/ibm/charge_types.hpp"
+#include "blastsim/ibm/coupling_kernels.hpp"
 #include "blastsim/ibm/immersed_boundary_kernels.hpp"
 
 #include <cmath>
@@ -99,6 +100,45 @@ struct ChargeBurnKernel {
     led.replaced_energy += rho * e * cell_area;
     gas.fill(i, j, cip::GasPhase::products, products.density, products.specific_energy);
   }
+};
+
+// ---- what the charges report (Charges::pressures(), energies(), add_diagnostics()) ----
+
+//! Cell k of the box of cells from (i0, j0), ni wide: its pressure [Pa] and a count of 1 when it is active and its
+//! centre lies within r of (cx, cy), else nothing (a sum gives the mean over a hole's open cells).
+struct HoleCellPressure {
+  cip::GasGrid g;
+  cip::GasMaterials mat;
+  cip::MaterialReadView m;
+  cip::GasStateReadView s;
+  Field2D<const std::uint8_t> active;
+  int i0, j0, ni;
+  double cx, cy, r;  //!< [m] the hole's centre and radius
+  BLAST_HD Vec2Sum operator()(index_t k) const {
+    const int i = i0 + static_cast<int>(k % ni), j = j0 + static_cast<int>(k / ni);
+    const double x = g.x_min + (i + 0.5) * g.dx - cx, y = g.y_min + (j + 0.5) * g.dy - cy;
+    if (!active(i, j) || x * x + y * y > r * r) return Vec2Sum{0, 0};
+    return Vec2Sum{cip::cell_pressure(mat, m, s.rho.f(i, j), s.e.f(i, j), i, j), 1.0};
+  }
+};
+
+//! Cell b of the box of cells from (i0, j0), ni wide, on a grid nx wide: the detonation energy [J/m] its burn
+//! released when charge `charge` holds it.
+struct ChargeCellEnergy {
+  ChargeCellParams cells;
+  ChargeLedgers<Access::read> ledger;
+  int nx, i0, j0, ni, charge;
+  BLAST_HD double operator()(index_t b) const {
+    const index_t c = static_cast<index_t>(j0 + b / ni) * nx + i0 + b % ni;
+    return cells.charge[c] == charge ? ledger.burn[c].detonation_energy : 0.0;
+  }
+};
+
+//! 1 for a cell that a charge holds and that has burnt by `until` [s].
+struct BurntChargeCell {
+  ChargeCellParams cells;
+  double until;
+  BLAST_HD double operator()(index_t k) const { return cells.charge[k] >= 0 && cells.burn_time[k] <= until ? 1.0 : 0.0; }
 };
 
 }  // namespace blastsim::ibm

@@ -8,6 +8,15 @@
 
 namespace blastsim::ibm {
 
+//! 1 for cell k (i + nx j) that the rock covers (inactive), 0 for an open one (GasRockCoupler::inactive_cells()).
+struct InactiveCell {
+  Field2D<const std::uint8_t> active;
+  int nx;
+  BLAST_HD double operator()(index_t k) const {
+    return active(static_cast<int>(k % nx), static_cast<int>(k / nx)) ? 0.0 : 1.0;
+  }
+};
+
 //! The two values the host reads after a coupled step (GasRockCoupler::step()): the gas's largest signal rate
 //! [1/s] (the next dt) and the rock's largest node speed over the step's substeps [m/s] (contact rebuild,
 //! instability check), in one reduction, so the host waits once a step.

@@ -551,4 +551,58 @@ struct CrackCushionKernel {
   }
 };
 
+// ---- what the crack gas reports (CrackGasCoupling::outer_blast_fraction(), blast_front(), add_diagnostics()) ----
+
+//! Of gas segment s at a pressure of at least min_pressure [Pa] with an end at a junction on the mesh outline
+//! whose node lies beyond `radius` of `center` (a crack's mouth on the outer surface): its blast-gas fraction;
+//! else 0 (a maximum over the segments).
+struct OuterBlastFraction {
+  CrackGraph g;
+  CrackSegments<Access::read> seg;
+  fdem::JointParams joint;              //!< nodes
+  fdem::NodeMotion<Access::read> nodes;
+  CrackJunctionPlaces places;           //!< outline
+  double cx, cy, r2;                    //!< [m] the centre, [m2] the radius squared
+  double min_pressure;                  //!< [Pa]
+  BLAST_HD double operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    if (seg.kind[s] != kSegmentGas || !(seg.prim[s].p >= min_pressure)) return 0.0;
+    const fdem::JointNodes jn = joint.nodes[s];
+    double y = 0.0;
+    for (int e = 0; e < 2; ++e) {
+      if (!places.outline[g.segment_junction[2 * s + e]]) continue;
+      const int node = e == 0 ? jn.a0 : jn.a1;
+      const double dx = nodes.x[node] - cx, dy = nodes.y[node] - cy;
+      if (dx * dx + dy * dy > r2) y = seg.prim[s].Y;
+    }
+    return y;
+  }
+};
+
+//! Of gas segment s whose blast-gas fraction and pressure reach min_fraction and min_pressure [Pa]: the distance
+//! [m] of its middle (its joint's four nodes) from (cx, cy); else 0 (a maximum over the segments: the front).
+struct BlastFrontOf {
+  CrackSegments<Access::read> seg;
+  fdem::JointParams joint;  //!< nodes
+  fdem::NodeMotion<Access::read> x;
+  double cx, cy, min_fraction, min_pressure;
+  BLAST_HD double operator()(index_t si) const {
+    const int s = static_cast<int>(si);
+    const ChannelPrimitive& P = seg.prim[s];
+    if (seg.kind[s] != kSegmentGas || !(P.Y >= min_fraction) || !(P.p >= min_pressure)) return 0.0;
+    const fdem::JointNodes jn = joint.nodes[s];
+    const double dx = 0.25 * (x.x[jn.a0] + x.x[jn.a1] + x.x[jn.b0] + x.x[jn.b1]) - cx;
+    const double dy = 0.25 * (x.y[jn.a0] + x.y[jn.a1] + x.y[jn.b0] + x.y[jn.b1]) - cy;
+    return sqrt(dx * dx + dy * dy);
+  }
+};
+
+//! Segment s's entry of the walls' ledger [J/m]: the work of its gas on the walls (`unpaid` false), or the work its
+//! loads did on the rock beyond what its gas paid (true).
+struct WallWorkOf {
+  CrackWallLedger<Access::read> walls;
+  bool unpaid;
+  BLAST_HD double operator()(index_t s) const { return unpaid ? walls.unpaid_work[s] : walls.wall_work[s]; }
+};
+
 }  // namespace blastsim::ibm

@@ -488,4 +488,48 @@ struct SegmentRateOf {
   }
 };
 
+//! The largest signal rate [1/s] at mouth J: its reservoir's gas enters at up to its vacuum front speed, over the
+//! length of each gas segment that meets the mouth (CrackGas::stable_dt()).
+struct MouthRateOf {
+  cip::GasMaterials mat;
+  CrackGraph g;
+  CrackGeometry<Access::read> geo;
+  CrackSegments<Access::read> seg;
+  CrackMouths<Access::read> mouths;
+  BLAST_HD double operator()(index_t ji) const {
+    const int J = static_cast<int>(ji);
+    if (!mouths.open[J]) return 0.0;
+    const ChannelPrimitive r = mouths.reservoir[J];
+    const double speed = r.c * fmax(1.0, 2.0 / mat.mixture_gruneisen(r.alpha));
+    double best = 0.0;
+    for (int k = g.junction_offset[J]; k < g.junction_offset[J + 1]; ++k) {
+      const int s = g.junction_entry[k] / 2;
+      if (seg.kind[s] == kSegmentGas) best = fmax(best, speed / geo.length[s]);
+    }
+    return best;
+  }
+};
+
+//! What segment s holds when it holds gas, 0 otherwise (CrackGas::totals()): its mass, energy, products mass or
+//! volume, 1 (a count), 1 above the pressure `wet` (a count of wet segments), or its pressure.
+struct GasSegmentValue {
+  enum What { mass, energy, products_mass, volume, count, wet_count, pressure };
+  CrackSegments<Access::read> seg;
+  What what;
+  double wet;  //!< [Pa] for wet_count
+  BLAST_HD double operator()(index_t s) const {
+    if (seg.kind[s] != kSegmentGas) return 0.0;
+    switch (what) {
+      case mass: return seg.cons[s].m;
+      case energy: return seg.cons[s].E;
+      case products_mass: return seg.cons[s].m1;
+      case volume: return seg.volume[s];
+      case count: return 1.0;
+      case wet_count: return seg.prim[s].p > wet ? 1.0 : 0.0;
+      case pressure: return seg.prim[s].p;
+    }
+    return 0.0;
+  }
+};
+
 }  // namespace blastsim::ibm
