@@ -2,10 +2,9 @@
 //! \brief GasLoading: the launches of gas -> rock (gas_load_kernels.hpp) and the interface force.
 #include "blastsim/ibm/gas_loading.hpp"
 
-#include "blastsim/core/backend.hpp"
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/device_groups.hpp"
 #include "blastsim/ibm/gas_load_kernels.hpp"
-
 
 #include <string>
 #include <utility>
@@ -13,28 +12,18 @@
 namespace blastsim::ibm {
 
 namespace detail {
-struct FaceWorkArrays {
-  DeviceVector<double> u_old, v_old;                  // padded shape
-  DeviceVector<FaceLoadRecord> record_u, record_v;     // padded shape, marked with the load that wrote them
-  DeviceVector<double> x0, y0, vx0, vy0;              // per rock node
-};
-struct EdgeWorkArrays {                 // per edge slot (GasLoad::edge_pressures_paid)
-  DeviceVector<int> source, key, record;  // the cell that gave the pressure; sorted keys and their slots
-  DeviceVector<double> loaded, work;      // the pressure given [Pa]; the work it did over the step [J/m]
+BLASTSIM_FIELD_STORAGE(FaceWork, BLASTSIM_IBM_FACE_WORK)
+BLASTSIM_STATE_STORAGE(NodeStart, BLASTSIM_IBM_NODE_START)
+BLASTSIM_STATE_STORAGE(EdgeWork, BLASTSIM_IBM_EDGE_WORK)
+//! The face work (padded shape; the records marked with the load that wrote them) and the nodes at the start.
+struct LoadWorkArrays {
+  FaceWorkArrays face;
+  NodeStartArrays start;
 };
 }  // namespace detail
 
-namespace {
-//! Copies one padded field into another (the face velocities a gas step starts from).
-struct CopyValues {
-  const double* from;
-  double* to;
-  BLAST_HD void operator()(index_t k) const { to[k] = from[k]; }
-};
-}  // namespace
-
 GasLoading::GasLoading(GasLoad load)
-    : load_(load), a_(std::make_unique<detail::FaceWorkArrays>()), edge_work_(std::make_unique<detail::EdgeWorkArrays>()) {}
+    : load_(load), a_(std::make_unique<detail::LoadWorkArrays>()), edge_work_(std::make_unique<detail::EdgeWorkArrays>()) {}
 GasLoading::~GasLoading() = default;
 
 const char* gas_load_name(GasLoad load) {
@@ -57,11 +46,10 @@ void GasLoading::load_rock(CouplingContext& ctx) {
   if (paid) ew.source.resize(slots), ew.loaded.resize(slots);
   for_each_index("ibm.edge_pressure", slots,
                  EdgePressureKernel{rock, g, mat, ctx.gas.material_fields(), ib.cell_active, s.rho.f, s.e.f,
-                                    ctx.ambient_pressure, faces, paid ? device_ptr(ew.source) : nullptr,
-                                    paid ? device_ptr(ew.loaded) : nullptr});
+                                    ctx.ambient_pressure, faces, paid, ew.view()});
   if (!faces && !paid) return;
   if (faces) {
-    detail::FaceWorkArrays& a = *a_;
+    detail::FaceWorkArrays& a = a_->face;
     const PaddedShape sh = g.padded_shape();
     if (a.record_u.size() != static_cast<size_t>(sh.size())) {  // once: every record marked as no load's
       const FaceLoadRecord none{{{0.0, 0.0, 0.0}, 0.0, 0.0}, -1.0};
@@ -83,23 +71,20 @@ void GasLoading::load_rock(CouplingContext& ctx) {
 
 void GasLoading::keep_nodes(CouplingContext& ctx) {
   const fdem::RockView rock = ctx.rock.view();
-  detail::FaceWorkArrays& a = *a_;
+  detail::NodeStartArrays& a = a_->start;
   const index_t nodes = 3 * static_cast<index_t>(rock.triangle_count);
-  for (auto [from, to] : {std::pair{rock.nodes.x, &a.x0}, std::pair{rock.nodes.y, &a.y0},
-                          std::pair{rock.nodes.vx, &a.vx0}, std::pair{rock.nodes.vy, &a.vy0}}) {
-    to->resize(nodes);
-    for_each_index("ibm.face_work.nodes", nodes, CopyValues{from, device_ptr(*to)});
-  }
+  a.for_each([&](const char*, DeviceVector<double>& v) { v.resize(nodes); });
+  for_each_index("ibm.face_work.nodes", nodes, NodeStartKernel{rock.nodes, a.view()});
   dt_prev_ = ctx.rock.last_step();
 }
 
 void GasLoading::before_gas(CouplingContext& ctx, double) {
   if (load_ == GasLoad::edge_pressures) return;
   const cip::GasStateView s = ctx.gas.state();
-  const index_t n = ctx.gas.grid().padded_shape().size();
-  a_->u_old.resize(n), a_->v_old.resize(n);
-  for_each_index("ibm.face_work.u_old", n, CopyValues{s.u.f.data, device_ptr(a_->u_old)});
-  for_each_index("ibm.face_work.v_old", n, CopyValues{s.v.f.data, device_ptr(a_->v_old)});
+  const PaddedShape sh = ctx.gas.grid().padded_shape();
+  detail::FaceWorkArrays& a = a_->face;
+  a.u_old.resize(sh.size()), a.v_old.resize(sh.size());  // (the records, empty until load_rock() makes them, unread)
+  for_each_index("ibm.face_work.start", sh.size(), FaceStartKernel{s.u.f, s.v.f, a.view(sh)});
   started_ = true;
 }
 
@@ -108,7 +93,7 @@ void GasLoading::after_rock(CouplingContext& ctx, double dt, int rock_substeps) 
   loaded_ = started_ = false;
   const cip::GasGrid g = ctx.gas.grid();
   const PaddedShape sh = g.padded_shape();
-  const detail::FaceWorkArrays& a = *a_;
+  const detail::FaceWorkArrays& a = a_->face;
   const cip::GasStateView s = ctx.gas.state();
   const cip::ImmersedBoundaryView ib = ctx.gas.immersed_boundary();
   const FaceStepMotion motion{make_field_view(a.u_old, sh), make_field_view(a.v_old, sh), ib.u_imposed, ib.v_imposed, dt};
@@ -123,19 +108,15 @@ void GasLoading::after_rock(CouplingContext& ctx, double dt, int rock_substeps) 
     const index_t slots = 3 * static_cast<index_t>(rock.triangle_count);
     ew.key.resize(slots), ew.record.resize(slots), ew.work.resize(slots);
     for_each_index("ibm.edge_work", slots,
-                   EdgeWorkKernel{rock, device_ptr(a.x0), device_ptr(a.y0), device_ptr(a.vx0), device_ptr(a.vy0),
-                                  dt / rock_substeps, dt_prev_, ctx.rock.pressure_scale(), device_ptr(ew.source),
-                                  device_ptr(ew.loaded), device_ptr(ew.key), device_ptr(ew.record),
-                                  device_ptr(ew.work)});
+                   EdgeWorkKernel{rock, a_->start.read(), dt / rock_substeps, dt_prev_, ctx.rock.pressure_scale(),
+                                  ew.view()});
     stable_sort_by_key("ibm.edge_work.sort", ew.key, ew.record, slots);
     for_each_index("ibm.edge_work.charge", slots,
-                   EdgeWorkChargeKernel{device_ptr(ew.key), device_ptr(ew.record), device_ptr(ew.work),
-                                        static_cast<int>(slots), g.nx, g.cell_area(), ctx.gas.cells()});
+                   EdgeWorkChargeKernel{ew.read(), static_cast<int>(slots), g.nx, g.cell_area(), ctx.gas.cells()});
     return;
   }
   for_each_cell("ibm.face_work", 0, g.nx, 0, g.ny,
-                FaceWorkLagKernel{ctx.rock.view(), device_ptr(a.x0), device_ptr(a.y0), device_ptr(a.vx0),
-                                  device_ptr(a.vy0), dt / rock_substeps, dt_prev_, ctx.owners.u, ctx.owners.v,
+                FaceWorkLagKernel{ctx.rock.view(), a_->start.read(), dt / rock_substeps, dt_prev_, ctx.owners.u, ctx.owners.v,
                                   make_field_view(a.record_u, sh), make_field_view(a.record_v, sh), stamp_, motion,
                                   cell});
 }

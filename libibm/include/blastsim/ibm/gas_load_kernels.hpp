@@ -17,6 +17,33 @@
 
 namespace blastsim::ibm {
 
+//! GasLoading's arrays, as field lists (storage in gas_loading.cpp). The rock's nodes at the start of a coupled
+//! step, for the work of the loads over it (GasLoading::keep_nodes()).
+#define BLASTSIM_IBM_NODE_START(X)                           \
+  X(double, x0, "each node's x at the step's start [m]")    \
+  X(double, y0, "its y [m]")                                 \
+  X(double, vx0, "its velocity along x [m/s]")              \
+  X(double, vy0, "along y [m/s]")
+//! Per edge slot (GasLoad::edge_pressures_paid): the cell that gave its pressure and that pressure, then the
+//! work it did over the step, keyed by that cell and sorted by key.
+#define BLASTSIM_IBM_EDGE_WORK(X)                                                              \
+  X(int, source, "the cell j nx + i that gave the slot's pressure (-1: none)")                \
+  X(double, loaded, "the pressure it gave [Pa]")                                              \
+  X(int, key, "the paying cell, or 0x7fffffff (sorted after EdgeWorkKernel)")                 \
+  X(int, record, "the slot at each sorted position")                                          \
+  X(double, work, "the work the slot's pressure did on the rock over the step [J/m]")
+BLASTSIM_VIEW_GROUP(NodeStart, BLASTSIM_IBM_NODE_START)
+BLASTSIM_VIEW_GROUP(EdgeWork, BLASTSIM_IBM_EDGE_WORK)
+
+//! The rock's nodes as the step starts (NodeStart).
+struct NodeStartKernel {
+  fdem::NodeMotion<Access::read> nodes;
+  NodeStart<Access::read_write> start;
+  BLAST_HD void operator()(index_t k) const {
+    start.x0[k] = nodes.x[k], start.y0[k] = nodes.y[k], start.vx0[k] = nodes.vx[k], start.vy0[k] = nodes.vy[k];
+  }
+};
+
 //! Pressure on each exposed rock edge (docs/coupling.md "Gas -> rock"): the cell the edge faces (the one
 //! holding the point a hundredth of a cell off the midpoint along the outward normal) gives its pressure when
 //! it is active. Otherwise a boundary edge takes the active cell nearest to its midpoint within 2 cells (the
@@ -25,8 +52,8 @@ namespace blastsim::ibm {
 //! that no gas pays for (both faces of a closed crack get the same pressure, which cancels). With face forces
 //! (GasLoad::face_forces) the grid gas loads the rock through FaceLoadKernel instead, and every edge pressure
 //! is 0. The faces of a crack with its own gas are loaded afterwards by the crack gas (CrackFacePressureKernel).
-//! With GasLoad::edge_pressures_paid (`source` not null) each slot also records the cell whose pressure it took
-//! (j nx + i; -1: none, the ambient pressure or not exposed) and that pressure, for EdgeWorkKernel.
+//! With GasLoad::edge_pressures_paid (`paid`) each slot also records the cell whose pressure it took (j nx + i;
+//! -1: none, the ambient pressure or not exposed) and that pressure, for EdgeWorkKernel.
 struct EdgePressureKernel {
   fdem::RockView rock;
   cip::GasGrid g;
@@ -36,12 +63,12 @@ struct EdgePressureKernel {
   Field2D<const double> rho, e;
   double ambient_pressure;
   bool face_forces;
-  int* source = nullptr;     // per slot, written when not null
-  double* loaded = nullptr;  // per slot [Pa], written when `source` is not null
+  bool paid;                              //!< GasLoad::edge_pressures_paid: writes ew.source and ew.loaded
+  EdgeWork<Access::read_write> ew;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
     const std::uint8_t kind = rock.edges.exposed[s];
-    if (source) source[s] = -1;
+    if (paid) ew.source[s] = -1;
     if (kind == fdem::kEdgeInside) return;
     if (face_forces) {
       rock.loads.pressure[s] = 0.0;
@@ -66,7 +93,7 @@ struct EdgePressureKernel {
         }
     }
     rock.loads.pressure[s] = p;
-    if (source) source[s] = from, loaded[s] = p;
+    if (paid) ew.source[s] = from, ew.loaded[s] = p;
   }
 };
 
@@ -82,34 +109,30 @@ struct EdgePressureKernel {
 //! whose work that gas pays) is not keyed.
 struct EdgeWorkKernel {
   fdem::RockView rock;  // after the substeps
-  const double *x0, *y0, *vx0, *vy0;  // each node at the start of the step [m], [m/s]
+  NodeStart<Access::read> start;      // each node at the start of the step [m], [m/s]
   double dt_sub, dt_prev;             // the rock's substep, its step before this coupled step [s]
   double pressure_scale;              // the rock's factor on the edge pressures (fdem::RockSolver::pressure_scale())
-  const int* source;
-  const double* loaded;
-  int* key;
-  int* record;
-  double* work;  // [J/m]
+  EdgeWork<Access::read_write> ew;    // reads source, loaded; writes key, record, work [J/m]
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    record[s] = s;
-    work[s] = 0.0;
-    key[s] = 0x7fffffff;
-    if (source[s] < 0 || !rock.edges.exposed[s] || rock.loads.pressure[s] != loaded[s]) return;
+    ew.record[s] = s;
+    ew.work[s] = 0.0;
+    ew.key[s] = 0x7fffffff;
+    if (ew.source[s] < 0 || !rock.edges.exposed[s] || rock.loads.pressure[s] != ew.loaded[s]) return;
     const int ends[2] = {fdem::slot_first_node(s), fdem::slot_second_node(s)};
     fdem::Vec2 mid[2];          // each node half way along the ledger's path
     double dx = 0.0, dy = 0.0;  // the two nodes' ledger displacements, added
     for (int q = 0; q < 2; ++q) {
       const int k = ends[q];
       // The ledger's path runs from x_0 - v_0 dt_prev / 2 to x_end - v_end dt_sub / 2.
-      const double xa = x0[k] - 0.5 * vx0[k] * dt_prev, xb = rock.nodes.x[k] - 0.5 * rock.nodes.vx[k] * dt_sub;
-      const double ya = y0[k] - 0.5 * vy0[k] * dt_prev, yb = rock.nodes.y[k] - 0.5 * rock.nodes.vy[k] * dt_sub;
+      const double xa = start.x0[k] - 0.5 * start.vx0[k] * dt_prev, xb = rock.nodes.x[k] - 0.5 * rock.nodes.vx[k] * dt_sub;
+      const double ya = start.y0[k] - 0.5 * start.vy0[k] * dt_prev, yb = rock.nodes.y[k] - 0.5 * rock.nodes.vy[k] * dt_sub;
       mid[q] = {0.5 * (xa + xb), 0.5 * (ya + yb)};
       dx += xb - xa, dy += yb - ya;
     }
     const fdem::Vec2 n = fdem::edge_outward_normal(mid[0], mid[1]);
-    work[s] = -0.5 * pressure_scale * loaded[s] * (n.x * dx + n.y * dy);
-    key[s] = source[s];
+    ew.work[s] = -0.5 * pressure_scale * ew.loaded[s] * (n.x * dx + n.y * dy);
+    ew.key[s] = ew.source[s];
   }
 };
 
@@ -119,18 +142,16 @@ struct EdgeWorkKernel {
 //! more than half of it, half is taken and the rest counted in the positivity ledger (as cip::GasCells::deposit()
 //! does), a source of the energy budget.
 struct EdgeWorkChargeKernel {
-  const int* key;     // sorted
-  const int* record;  // the slot at each sorted position
-  const double* work;
+  EdgeWork<Access::read> ew;  // key (sorted), record (the slot at each sorted position), work
   int slots, nx;
   double cell_area;  // [m2]
   cip::GasCells cells;
   BLAST_HD void operator()(index_t ki) const {
     const int k = static_cast<int>(ki);
-    const int c = key[k];
-    if (c == 0x7fffffff || (k > 0 && key[k - 1] == c)) return;
+    const int c = ew.key[k];
+    if (c == 0x7fffffff || (k > 0 && ew.key[k - 1] == c)) return;
     double W = 0.0;
-    for (int r = k; r < slots && key[r] == c; ++r) W += work[record[r]];
+    for (int r = k; r < slots && ew.key[r] == c; ++r) W += ew.work[ew.record[r]];
     const int i = c % nx, j = c / nx;
     const double mass = cells.s.rho.f(i, j) * cell_area, internal = cells.s.e.f(i, j) * mass;
     const double taken = W > 0.5 * internal && internal > 0.0 ? 0.5 * internal : W;
@@ -185,6 +206,25 @@ struct PrescribedFaceRefundKernel {
 struct FaceLoadRecord {
   FacePointCoupling c;
   double stamp;
+};
+
+//! Per face point (padded shape): the face velocities a gas step starts from, and the coupling each face force
+//! was put on the rock with (GasLoad::face_forces).
+#define BLASTSIM_IBM_FACE_WORK(X)                                                  \
+  X(double, u_old, "x-face velocity at the gas step's start [m/s]")               \
+  X(double, v_old, "y-face velocity at its start [m/s]")                          \
+  X(FaceLoadRecord, record_u, "x-face point: the coupling its force used")        \
+  X(FaceLoadRecord, record_v, "y-face point: the same")
+BLASTSIM_FIELD_GROUP(FaceWork, BLASTSIM_IBM_FACE_WORK)
+
+//! The face velocities a gas step starts from (FaceWork's u_old, v_old), entry k of the padded shape.
+struct FaceStartKernel {
+  Field2D<const double> u, v;              //!< the state's face velocities
+  FaceWork<Access::read_write> face_work;  //!< writes u_old, v_old
+  BLAST_HD void operator()(index_t k) const {
+    face_work.u_old.data[k] = u.data[k];
+    face_work.v_old.data[k] = v.data[k];
+  }
 };
 
 //! GasLoad::face_forces (docs/coupling.md "Face forces"): the force the grid gas puts on the rock is the one its
@@ -257,7 +297,7 @@ struct FaceLoadKernel {
 //! exactly the work the rock received. A gather per cell (each face's lag computed by both its cells alike).
 struct FaceWorkLagKernel {
   fdem::RockView rock;  // after the substeps
-  const double *x0, *y0, *vx0, *vy0;  // each node at the start of the step [m], [m/s]
+  NodeStart<Access::read> start;  // each node at the start of the step [m], [m/s]
   double dt_sub, dt_prev;  // the rock's substep, its step before this coupled step [s]
   Field2D<const int> owner_u, owner_v;
   Field2D<const FaceLoadRecord> record_u, record_v;
@@ -275,8 +315,8 @@ struct FaceWorkLagKernel {
     double d = 0.0;
     for (int k = 0; k < 3; ++k) {
       const int n = 3 * t + k;
-      const double mx = rock.nodes.x[n] - x0[n] + 0.5 * (vx0[n] * dt_prev - rock.nodes.vx[n] * dt_sub);
-      const double my = rock.nodes.y[n] - y0[n] + 0.5 * (vy0[n] * dt_prev - rock.nodes.vy[n] * dt_sub);
+      const double mx = rock.nodes.x[n] - start.x0[n] + 0.5 * (start.vx0[n] * dt_prev - rock.nodes.vx[n] * dt_sub);
+      const double my = rock.nodes.y[n] - start.y0[n] + 0.5 * (start.vy0[n] * dt_prev - rock.nodes.vy[n] * dt_sub);
       if (c.nx == 0.0 && c.ny == 0.0) d += c.w[k] * (axis == 0 ? mx : my);
       else d += c.w[k] * (axis == 0 ? c.nx : c.ny) * (c.nx * mx + c.ny * my);
     }

@@ -37,7 +37,7 @@ inline double recommended_courant(cip::Transport t, GasLoad load) {
 }
 
 namespace detail {
-struct FaceWorkArrays;
+struct LoadWorkArrays;
 struct EdgeWorkArrays;
 }
 
@@ -75,7 +75,7 @@ class GasLoading : public CouplingProcess {
   GasLoad load_;
   // GasLoad::face_forces, within one coupled step (nothing to checkpoint): the gas's face velocities at the
   // step's start, the coupling of each face point loaded, the rock's nodes at the load (gas_loading.cpp)
-  std::unique_ptr<detail::FaceWorkArrays> a_;
+  std::unique_ptr<detail::LoadWorkArrays> a_;  // the face work and the nodes at the step's start
   std::unique_ptr<detail::EdgeWorkArrays> edge_work_;  // GasLoad::edge_pressures_paid: per slot, within one step
   double dt_prev_ = 0;   // [s] the rock's last step at the load
   double stamp_ = -1;    // the load's mark in the face records (the gas's step count then)
