@@ -40,6 +40,7 @@ expect "realisations: N not a number" "${realisations[@]}" "$case_file" x --out 
 expect "realisations: a jitter the driver refuses" "${realisations[@]}" "$case_file" 2 --out out --blastsim "$blastsim" --jitter -1
 expect "realisations: --jobs 0" "${realisations[@]}" "$case_file" 2 --out out --blastsim "$blastsim" --jobs 0
 expect "realisations: --collect-only without runs" "${realisations[@]}" "$case_file" 2 --out a_folder --collect-only
+expect "check-idiom: a root that is no blastsim tree" "$py" "$repo/scripts/check-idiom.py" --root a_folder
 # The shell studies look for the driver in the repository's build-cpu; give them this build's through a link.
 mkdir -p repo/scripts repo/examples/single_hole repo/build-cpu/apps/blastsim
 cp "$repo/scripts/refine-single-hole.sh" "$repo/scripts/stress-blast-study.sh" "$repo/scripts/cpu-scaling.sh" repo/scripts/
