@@ -15,9 +15,9 @@ nvcc=/usr/local/cuda/bin/nvcc
 [ -x "$nvcc" ] || { echo "cuda-stack-frames: no nvcc at $nvcc" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for src in libcip/src/*.cpp libfdem/src/rock_solver.cpp libibm/src/*.cpp; do
+for src in libcip/src/*.cpp libfdem/src/{rock_solver,contact_search,rock_probes,fragment_labels,in_situ_setup}.cpp libibm/src/*.cpp; do
   "$nvcc" -DBLASTSIM_BACKEND_CUDA=1 -Ilibcip/include -Ilibfdem/include -Ilibibm/include -Icore/include -O3 -DNDEBUG \
-    --generate-code=arch=compute_${arch},code=sm_${arch} --extended-lambda --expt-relaxed-constexpr -std=c++17 -x cu \
+    "--generate-code=arch=compute_${arch},code=sm_${arch}" --extended-lambda --expt-relaxed-constexpr -std=c++17 -x cu \
     -c "$src" -o "$tmp/k.o" -Xptxas -v > "$tmp/$(basename "$src").txt" 2>&1
 done
 py=/usr/bin/python3
