@@ -1,12 +1,11 @@
 //! \file bench_common.hpp
-//! \brief Shared pieces of the benchmark programs: argument lists, thread count, measured copy bandwidth.
+//! \brief Shared pieces of the benchmark programs: argument lists, thread count, measured copy bandwidth. Host
+//! code: the one kernel (the copy) is in bench_bandwidth.cpp, so the programs compile without the backend.
 #pragma once
 
-#include "blastsim/core/backend.hpp"
+#include "blastsim/core/kernel_profile.hpp"
+#include "blastsim/core/macros.hpp"
 
-#include <thrust/copy.h>
-
-#include <chrono>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -50,17 +49,6 @@ inline int thread_count() {
 }
 
 //! Device-to-device copy bandwidth [B/s] (bytes read + written, 256 MiB arrays): the floor's reference.
-inline double copy_bandwidth() {
-  using Clock = std::chrono::steady_clock;
-  const size_t n = size_t(1) << 25;
-  DeviceVector<double> a(n, 1.0), b(n, 0.0);
-  thrust::copy(thrust::device, a.begin(), a.end(), b.begin());  // warm-up
-  synchronize();
-  const int reps = 5;
-  const auto t0 = Clock::now();
-  for (int r = 0; r < reps; ++r) thrust::copy(thrust::device, a.begin(), a.end(), b.begin());
-  synchronize();
-  return 2.0 * sizeof(double) * n * reps / std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double copy_bandwidth();
 
 }  // namespace blastsim::bench

@@ -1,7 +1,7 @@
 //! \file main.cpp
 //! \brief The blastsim driver: reads one TOML case (plus key=value overrides), echoes it, runs it.
-#include "blastsim/core/backend.hpp"
 #include "blastsim/core/error.hpp"
+#include "blastsim/core/kernel_profile.hpp"
 #include "blastsim/core/macros.hpp"
 #include "blastsim_build_info.hpp"
 #include "case.hpp"

@@ -7,14 +7,13 @@
 
 #include "blastsim/core/atomic.hpp"
 #include "blastsim/core/field2d.hpp"
+#include "blastsim/core/kernel_profile.hpp"
 #include "blastsim/core/macros.hpp"
 
 #include <algorithm>
 #include <cassert>
-#include <chrono>
 #include <climits>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -37,90 +36,6 @@
 #include <thrust/transform_reduce.h>
 
 namespace blastsim {
-
-//! Waits until every kernel launched so far has finished (for timings; the step loop never needs it).
-inline void synchronize() {
-#if defined(__CUDACC__)
-  cudaDeviceSynchronize();
-#endif
-}
-
-//! Wall time per kernel label, for benchmarks and profiles (`blastsim --profile`, blastsim-bench-coupled).
-//! Off by default; when on, every launch through the launchers below is bracketed by synchronize(), so the
-//! times are each kernel's own (and the run is slower). Host threads only read or change it between steps.
-class KernelProfile {
- public:
-  struct Entry {
-    double seconds = 0;
-    long launches = 0;
-  };
-  static KernelProfile& instance() {
-    static KernelProfile p;
-    return p;
-  }
-  bool enabled() const { return enabled_; }
-  void enable(bool on) { enabled_ = on; }
-  void reset() { entries_.clear(); }
-  const std::map<std::string, Entry>& entries() const { return entries_; }
-  //! The table of the labels' wall times, launches and shares, largest first, then the sum per library (the
-  //! label's prefix before its first '.').
-  std::string report() const {
-    double total = 0;
-    std::map<std::string, double> group;
-    for (const auto& [label, e] : entries_) total += e.seconds, group[label.substr(0, label.find('.'))] += e.seconds;
-    std::vector<std::pair<std::string, Entry>> sorted(entries_.begin(), entries_.end());
-    std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second.seconds > b.second.seconds; });
-    char line[256];
-    std::snprintf(line, sizeof line, "kernel profile (each launch synchronised; %.3f s in kernels):\n", total);
-    std::string out = line;
-    std::snprintf(line, sizeof line, "  %-32s %10s %12s %12s %7s\n", "kernel", "launches", "total s", "ms/launch", "share");
-    out += line;
-    for (const auto& [label, e] : sorted) {
-      std::snprintf(line, sizeof line, "  %-32s %10ld %12.4f %12.4f %6.1f%%\n", label.c_str(), e.launches, e.seconds,
-                    1e3 * e.seconds / e.launches, 100 * e.seconds / total);
-      out += line;
-    }
-    for (const auto& [name, seconds] : group) {
-      std::snprintf(line, sizeof line, "  %-32s %36.4f %6.1f%%\n", (name + ".*").c_str(), seconds, 100 * seconds / total);
-      out += line;
-    }
-    return out;
-  }
-  //! Runs `launch`, and when enabled adds its synchronised wall time to `label`.
-  template <class Launch>
-  void time(const char* label, Launch&& launch) {
-    if (!enabled_) {
-      launch();
-      return;
-    }
-    synchronize();
-    const auto t0 = std::chrono::steady_clock::now();
-    launch();
-    synchronize();
-    Entry& e = entries_[label];
-    e.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ++e.launches;
-  }
-
- private:
-  bool enabled_ = false;
-  std::map<std::string, Entry> entries_;
-};
-
-//! How many kernels the launchers below started and how many times the host waited for the device
-//! (a reduction's result, a copy to the host, a blocking sort or scan), counted on every backend alike
-//! so that a test on the CPU shows what a GPU step does: the step loop's goal is one wait a step, for
-//! the value that sets dt. Host threads only; never reset while a step runs.
-struct LaunchCounts {
-  long launches = 0;
-  long host_waits = 0;
-  static LaunchCounts& instance() {
-    static LaunchCounts c;
-    return c;
-  }
-};
-//! Records a blocking call made outside the launchers (a Thrust sort or scan on the device policy).
-inline void count_host_wait() { ++LaunchCounts::instance().host_waits; }
 
 namespace detail {
 //! The policy of the launchers: on CUDA the launch returns at once (`par_nosync`: the kernels of a step
