@@ -39,10 +39,12 @@ function(blastsim_use_vtk target)
   endif()
 endfunction()
 
-# Common warning set for project targets, and the sanitizers' instrumentation when BLASTSIM_SANITIZE is set.
+# Common warning set for project targets, and the sanitizers' instrumentation when BLASTSIM_SANITIZE is set
+# (NO_SANITIZE: warnings only; the target still links the sanitizers' runtime, add_link_options()).
 function(blastsim_warnings target)
+  cmake_parse_arguments(W "NO_SANITIZE" "" "" ${ARGN})
   target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic>)
-  if(BLASTSIM_SANITIZE)
+  if(BLASTSIM_SANITIZE AND NOT W_NO_SANITIZE)
     target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-fsanitize=${BLASTSIM_SANITIZE} -fno-omit-frame-pointer>)
   endif()
 endfunction()

@@ -1,5 +1,6 @@
 //! \file bench_bandwidth.cpp
-//! \brief The benchmarks' memory-traffic reference: a device-to-device copy timed on the compiled backend.
+//! \brief The benchmarks' device code: the memory-traffic reference (a device-to-device copy timed on the compiled
+//! backend) and the device wait.
 #include "bench_common.hpp"
 
 #include "blastsim/core/backend.hpp"
@@ -22,5 +23,7 @@ double copy_bandwidth() {
   synchronize();
   return 2.0 * sizeof(double) * n * reps / std::chrono::duration<double>(Clock::now() - t0).count();
 }
+
+void wait_for_device() { synchronize(); }
 
 }  // namespace blastsim::bench

@@ -1,6 +1,7 @@
 //! \file bench_common.hpp
-//! \brief Shared pieces of the benchmark programs: argument lists, thread count, measured copy bandwidth. Host
-//! code: the one kernel (the copy) is in bench_bandwidth.cpp, so the programs compile without the backend.
+//! \brief Shared pieces of the benchmark programs: argument lists, thread count, measured copy bandwidth, the
+//! device wait. Host code: the device code (the copy, the wait) is in bench_bandwidth.cpp, so the programs
+//! compile without the backend.
 #pragma once
 
 #include "blastsim/core/kernel_profile.hpp"
@@ -50,5 +51,7 @@ inline int thread_count() {
 
 //! Device-to-device copy bandwidth [B/s] (bytes read + written, 256 MiB arrays): the floor's reference.
 double copy_bandwidth();
+//! Waits until every kernel launched so far has finished (synchronize(), for the timings).
+void wait_for_device();
 
 }  // namespace blastsim::bench

@@ -102,14 +102,14 @@ int main(int argc, char** argv) {
     prof.enable(true);
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < steps; ++k) one_step();
-    synchronize();
+    bench::wait_for_device();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     prof.enable(false);
     prof.reset();  // and once more without the per-launch synchronisation
     const LaunchCounts counts0 = LaunchCounts::instance();
     const auto t1 = std::chrono::steady_clock::now();
     for (int k = 0; k < steps; ++k) one_step();
-    synchronize();
+    bench::wait_for_device();
     const LaunchCounts counts1 = LaunchCounts::instance();
     const double free_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     prof.enable(true);

@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
     KernelProfile::instance().enable(profile);
     const auto t0 = Clock::now();
     test::run_to(s, 0.25, c);  // as test G2
-    synchronize();
+    bench::wait_for_device();
     const long long steps = s.steps();
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     KernelProfile::instance().enable(false);

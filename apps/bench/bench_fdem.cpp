@@ -64,20 +64,20 @@ int main(int argc, char** argv) {
       auto timed = [](auto&& f) {
         const auto t0 = Clock::now();
         f();
-        synchronize();
+        bench::wait_for_device();
         return std::chrono::duration<double>(Clock::now() - t0).count();
       };
-      synchronize();
+      bench::wait_for_device();
       for (int k = 0; k < steps; ++k) {
         t_tri += timed([&] { s.triangle_forces(dt); });
         t_joint += timed([&] { s.joint_forces(); });
         t_contact += timed([&] { s.contact_forces(dt); });
         t_node += timed([&] { s.update_nodes(dt); });
       }
-      synchronize();
+      bench::wait_for_device();
       const auto t0 = Clock::now();
       for (int k = 0; k < steps; ++k) s.step(dt);
-      synchronize();
+      bench::wait_for_device();
       const double step = std::chrono::duration<double>(Clock::now() - t0).count() / steps;
       const double rebuild = contact ? timed([&] { s.rebuild_contact_grid(); }) : 0.0;
       const double T = s.triangle_count(), J = s.joint_count();

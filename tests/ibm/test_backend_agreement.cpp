@@ -60,7 +60,7 @@ std::map<std::string, double> short_blast_fingerprint() {
 
 }  // namespace
 
-TEST_CASE("Backend agreement: a short coupled blast ends with the CPU backend's totals", "[ibm][backend]") {
+TEST_CASE("Backend agreement: a short coupled blast ends with the CPU backend's totals", "[ibm][backend][heavy]") {
   const std::map<std::string, double> now = short_blast_fingerprint();
   if (std::getenv("BLASTSIM_WRITE_REFERENCE")) {
     REQUIRE(std::string(backend_name()).rfind("cpu", 0) == 0);  // the reference is the CPU backend's

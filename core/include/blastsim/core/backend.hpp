@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <climits>
 #include <cstdio>
 #include <string>
@@ -37,7 +38,29 @@
 
 namespace blastsim {
 
+//! Waits until every kernel launched so far has finished (for timings; the step loop never needs it).
+inline void synchronize() {
+#if defined(__CUDACC__)
+  cudaDeviceSynchronize();
+#endif
+}
+
 namespace detail {
+//! Runs `launch`, and when the KernelProfile is on adds its synchronised wall time to `label`.
+template <class Launch>
+void profiled(const char* label, Launch&& launch) {
+  KernelProfile& profile = KernelProfile::instance();
+  if (!profile.enabled()) {
+    launch();
+    return;
+  }
+  synchronize();
+  const auto t0 = std::chrono::steady_clock::now();
+  launch();
+  synchronize();
+  profile.add(label, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
 //! The policy of the launchers: on CUDA the launch returns at once (`par_nosync`: the kernels of a step
 //! queue on the default stream in order, and the host waits only where it reads a result); the Thrust
 //! default (`thrust::device`) would wait for every kernel to finish. On host threads every call returns
@@ -80,7 +103,7 @@ template <class F>
 void for_each_index(const char* label, index_t n, F f) {
   if (n <= 0) return;
   ++LaunchCounts::instance().launches;
-  KernelProfile::instance().time(label, [&] {
+  detail::profiled(label, [&] {
 #if defined(__CUDACC__)
     thrust::for_each_n(detail::launch_policy(), thrust::counting_iterator<index_t>(0), n, f);
 #else
@@ -219,7 +242,7 @@ T reduce_with(const char* label, index_t n, T init, F f, Op op) {
   T out = init;
   ++LaunchCounts::instance().launches;
   ++LaunchCounts::instance().host_waits;  // the host reads the result
-  KernelProfile::instance().time(label, [&] {
+  detail::profiled(label, [&] {
     out = thrust::transform_reduce(thrust::device, thrust::counting_iterator<index_t>(0),
                                    thrust::counting_iterator<index_t>(n), detail::Transformed<F, T>{f}, init, op);
   });
@@ -250,7 +273,7 @@ T reduce_sum(const char* label, index_t n, T init, F f) {
   if (n <= 0) return out;
   ++LaunchCounts::instance().launches;
   ++LaunchCounts::instance().host_waits;
-  KernelProfile::instance().time(label, [&] {
+  detail::profiled(label, [&] {
     const index_t blocks = (n + kSumBlock - 1) / kSumBlock;
     std::vector<T> part(static_cast<std::size_t>(blocks), init);  // each overwritten below
 #pragma omp parallel for schedule(static)
@@ -335,7 +358,7 @@ template <class K, class V>
 void stable_sort_by_key(const char* label, DeviceVector<K>& keys, DeviceVector<V>& values, index_t n) {
   ++LaunchCounts::instance().launches;
   count_host_wait();
-  KernelProfile::instance().time(
+  detail::profiled(
       label, [&] { thrust::stable_sort_by_key(thrust::device, keys.begin(), keys.begin() + n, values.begin()); });
 }
 
@@ -345,7 +368,7 @@ template <class K>
 void lower_bounds(const char* label, const DeviceVector<K>& keys, index_t n, DeviceVector<int>& out, int count) {
   ++LaunchCounts::instance().launches;
   count_host_wait();
-  KernelProfile::instance().time(label, [&] {
+  detail::profiled(label, [&] {
     thrust::lower_bound(thrust::device, keys.begin(), keys.begin() + n, thrust::counting_iterator<int>(0),
                         thrust::counting_iterator<int>(count), out.begin());
   });
@@ -357,7 +380,7 @@ template <class K>
 void upper_bounds(const char* label, const DeviceVector<K>& keys, index_t n, DeviceVector<int>& out, int count) {
   ++LaunchCounts::instance().launches;
   count_host_wait();
-  KernelProfile::instance().time(label, [&] {
+  detail::profiled(label, [&] {
     thrust::upper_bound(thrust::device, keys.begin(), keys.begin() + n, thrust::counting_iterator<int>(0),
                         thrust::counting_iterator<int>(count), out.begin());
   });
@@ -384,7 +407,7 @@ template <class T>
 T exclusive_scan_total(const char* label, DeviceVector<T>& v) {
   ++LaunchCounts::instance().launches;
   count_host_wait();
-  KernelProfile::instance().time(label, [&] { thrust::exclusive_scan(thrust::device, v.begin(), v.end(), v.begin()); });
+  detail::profiled(label, [&] { thrust::exclusive_scan(thrust::device, v.begin(), v.end(), v.begin()); });
   return read_element(v, static_cast<index_t>(v.size()) - 1);
 }
 
@@ -395,7 +418,7 @@ index_t select_indices(const char* label, index_t n, DeviceVector<int>& out, F k
   ++LaunchCounts::instance().launches;
   count_host_wait();
   index_t selected = 0;
-  KernelProfile::instance().time(label, [&] {
+  detail::profiled(label, [&] {
     const auto end = thrust::copy_if(thrust::device, thrust::counting_iterator<int>(0),
                                      thrust::counting_iterator<int>(static_cast<int>(n)), out.begin(), keep);
     selected = static_cast<index_t>(end - out.begin());

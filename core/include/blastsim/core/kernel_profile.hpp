@@ -1,31 +1,19 @@
 //! \file kernel_profile.hpp
-//! \brief Host-side counters of the kernel launchers: wall time per kernel label, launches and host waits, and the
-//! device wait; no Thrust, so the driver and the benchmarks' host code read them without the backend.
+//! \brief Host-side counters of the kernel launchers: wall time per kernel label, launches and host waits; no
+//! Thrust and no CUDA runtime, so the driver and the benchmarks' host code read them without the backend.
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
-#if defined(BLASTSIM_BACKEND_CUDA)
-#include <cuda_runtime_api.h>
-#endif
-
 namespace blastsim {
 
-//! Waits until every kernel launched so far has finished (for timings; the step loop never needs it).
-inline void synchronize() {
-#if defined(BLASTSIM_BACKEND_CUDA)
-  cudaDeviceSynchronize();
-#endif
-}
-
 //! Wall time per kernel label, for benchmarks and profiles (`blastsim --profile`, blastsim-bench-coupled).
-//! Off by default; when on, every launch through the launchers below is bracketed by synchronize(), so the
+//! Off by default; when on, every launch through the backend's launchers is bracketed by synchronize(), so the
 //! times are each kernel's own (and the run is slower). Host threads only read or change it between steps.
 class KernelProfile {
  public:
@@ -65,19 +53,10 @@ class KernelProfile {
     }
     return out;
   }
-  //! Runs `launch`, and when enabled adds its synchronised wall time to `label`.
-  template <class Launch>
-  void time(const char* label, Launch&& launch) {
-    if (!enabled_) {
-      launch();
-      return;
-    }
-    synchronize();
-    const auto t0 = std::chrono::steady_clock::now();
-    launch();
-    synchronize();
+  //! Adds one launch of `seconds` [s] to `label` (the launchers, when enabled: backend.hpp).
+  void add(const char* label, double seconds) {
     Entry& e = entries_[label];
-    e.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e.seconds += seconds;
     ++e.launches;
   }
 
