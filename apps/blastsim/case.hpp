@@ -9,10 +9,8 @@
 #include "blastsim/cip/grid.hpp"
 #include "blastsim/fdem/fragments.hpp"
 #include "blastsim/fdem/rock_model.hpp"
-#include "blastsim/ibm/blasthole_monitor.hpp"
 #include "blastsim/ibm/charge_types.hpp"
-#include "blastsim/ibm/crack_gas.hpp"
-#include "blastsim/ibm/gas_loading.hpp"
+#include "blastsim/ibm/coupling_options.hpp"
 #include "input_reader.hpp"
 
 #include <array>

@@ -58,41 +58,22 @@ class CouplingSeries {
   CsvSeries file_;
   double initial_ = 0;
 
-  //! The columns (ibm::coupled_budget(): docs/validation.md S4); returns the relative budget residual.
+  //! The columns (ibm::budget_columns(): the budget of docs/validation.md S4, then each coupling process's own);
+  //! returns the relative budget residual.
   double columns(CsvRecord& o) const {
     const ibm::CoupledBudget b = o.header() ? ibm::CoupledBudget{} : ibm::coupled_budget(gas_, rock_, coupler_, initial_);
-    const cip::GasTotals& g = b.gas;
-    const fdem::RockEnergies& e = b.rock;
-    const ibm::CouplingDiagnostics& d = b.coupling;
-    const double relative = o.header() ? 0.0 : b.residual / (initial_ + b.charge_energy);
-    o.integer("step", gas_.steps()).real("time_s", gas_.time()).real("gas_mass_kg_per_m", g.mass);
-    o.real("gas_internal_J_per_m", g.internal_energy).real("gas_kinetic_J_per_m", g.kinetic_energy);
-    o.real("gas_energy_out_J_per_m", b.gas_energy_out).real("rock_kinetic_J_per_m", e.kinetic);
-    o.real("rock_strain_J_per_m", e.strain).real("joint_work_J_per_m", e.joint_work);
-    o.real("fracture_dissipated_J_per_m", e.fracture_dissipated).real("contact_work_J_per_m", e.contact_work);
-    o.real("damping_dissipated_J_per_m", e.damping_dissipated).real("gas_work_on_rock_J_per_m", d.gas_work_on_rock);
-    o.real("other_external_work_J_per_m", b.other_external_work);
-    o.real("transition_energy_J_per_m", d.transitions.energy_created).real("budget_residual_J_per_m", b.residual, 6);
-    o.real("budget_relative", relative, 6).real("gas_force_x_N_per_m", d.gas_force_on_rock[0], 6);
-    o.real("gas_force_y_N_per_m", d.gas_force_on_rock[1], 6).integer("broken_joints", e.broken_joints);
-    o.real("crack_length_m", e.crack_length, 6).integer("cells_covered", d.transitions.covered);
-    o.integer("cells_uncovered", d.transitions.uncovered).real("immersed_face_work_J_per_m", b.immersed_face_work);
-    o.real("crack_gas_mass_kg_per_m", d.crack.mass).real("crack_gas_energy_J_per_m", d.crack.energy);
-    o.integer("crack_gas_segments", d.crack.gas_segments).integer("crack_wet_segments", d.crack.wet_segments);
-    o.real("crack_gas_pressure_max_Pa", d.crack.max_pressure, 6);
-    o.real("crack_gas_to_grid_J_per_m", d.crack.to_grid_energy).real("crack_gas_wall_work_J_per_m", d.crack.wall_work)
-        .real("crack_gas_unpaid_work_J_per_m", d.crack.unpaid_work);
-    o.real("charge_detonation_energy_J_per_m", d.charges.detonation_energy);
+    o.integer("step", gas_.steps()).real("time_s", gas_.time());
+    ibm::budget_columns(b, coupler_, o);
     for (const MonitorSettings::Region& r : c_.monitor.regions) {
       const cip::GasTotals t = o.header() ? cip::GasTotals{} : coupler_.gas_in(r.where);
       o.real(r.name + "_mass_kg_per_m", t.mass).real(r.name + "_energy_J_per_m", t.total_energy());
     }
-    return relative;
+    return b.relative;
   }
 };
 
 //! The blasthole monitor's files ([monitor.blasthole]; ibm::BlastholeMonitor computes): wall_series.csv every
-//! monitor.blasthole.interval, and summary.txt with the events the paper reports.
+//! monitor.blasthole.interval, and summary.txt with the events of the blast.
 class BlastholeFiles {
  public:
   BlastholeFiles(const Case& c, cip::GasSolver& gas, fdem::RockSolver& rock,
@@ -113,8 +94,8 @@ class BlastholeFiles {
     if (s.blast_front > max_front_) max_front_ = s.blast_front, max_front_time_ = s.time;
   }
 
-  //! summary.txt: the events, how each is measured, and where the paper puts them; then `analysis` (the rock
-  //! analysis, RockOutputs::summary()). Without a blasthole monitor, the analysis alone.
+  //! summary.txt: the events and how each is measured (docs/single-hole.md sets them beside the paper's), then
+  //! `analysis` (the rock analysis, RockOutputs::summary()). Without a blasthole monitor, the analysis alone.
   void write_summary(const fdem::RockEnergies& e, const std::string& analysis) const {
     const std::string path = (std::filesystem::path(c_.output.directory) / "summary.txt").string();
     if (!monitor_) {
@@ -130,11 +111,11 @@ class BlastholeFiles {
       out << fmt::format("blastsim single-hole summary at t = {:.4e} s (step {})\n\n", gas_.time(), gas_.steps());
       out << fmt::format("first crack: {}\n  the first sample (every {:g} s) with a broken joint\n", when(ev.first_crack),
                          c_.monitor.blasthole->interval);
-      out << fmt::format("gas leaves the rock's outer surface: {} (paper: about 3.14 ms)\n", when(ev.ejection));
+      out << fmt::format("gas leaves the rock's outer surface: {}\n", when(ev.ejection));
       out << fmt::format("  the first sample where the gas pressure on the circle half a cell outside the rock's outer\n"
                          "  radius ({:g} m) exceeds twice the ambient pressure ({:.4g} Pa); pressure there then {:.4g} Pa\n",
                          monitor_->geometry().outer_radius, monitor_->ambient_pressure(), ev.ejection_pressure);
-      out << fmt::format("nominal gas speed there: {} (paper: about 214 m/s)\n",
+      out << fmt::format("nominal gas speed there: {}\n",
                          ev.ejection < 0 ? std::string("-") : fmt::format("{:.1f} m/s at {:.3f} ms", ev.jet_speed, 1e3 * ev.jet_time));
       out << "  the mass-flux-weighted mean outward speed (sum rho u_n^2 / sum rho u_n) over the points of that circle\n"
              "  where the pressure exceeds twice the ambient and the gas flows out; its largest value over the samples\n"
@@ -142,7 +123,7 @@ class BlastholeFiles {
       out << fmt::format("gas speed at the onset: {}\n  the largest outward speed among those points at the first "
                          "outflow sample\n", ev.ejection < 0 ? std::string("-") : fmt::format("{:.1f} m/s", ev.ejection_speed));
       if (gas_.materials().traced()) {
-        out << fmt::format("blast gas reaches the rock's outer surface: {}{} (paper: gas ejected at about 3.14 ms)\n",
+        out << fmt::format("blast gas reaches the rock's outer surface: {}{}\n",
                            when(ev.blast_arrival), ev.blast_arrival < 0 ? "" : (ev.blast_arrival_crack > 0 ? ", at a crack "
                                                                                 "mouth" : ", on the circle outside"));
         out << fmt::format("  the first sample where at least {:g} of the gas is blast gas (the traced gas: {}) at a pressure\n"
@@ -150,7 +131,7 @@ class BlastholeFiles {
                            "  crack at its mouth on the outer surface\n", ibm::BlastholeMonitor::kBlastFraction,
                            gas_.materials().two ? "the detonation products" : "the gas of the [[gas.region]] tables",
                            ibm::BlastholeMonitor::kBlastPressure);
-        out << fmt::format("blast gas outflow speed: {} (paper: about 214 m/s)\n",
+        out << fmt::format("blast gas outflow speed: {}\n",
                            ev.blast_arrival < 0 || ev.blast_speed_time < 0
                                ? std::string("-")
                                : fmt::format("{:.1f} m/s at {:.3f} ms", ev.blast_speed, 1e3 * ev.blast_speed_time));
@@ -527,8 +508,8 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
     for (const std::vector<int>& j : model.crack_joints) joints += j.size();
     log << fmt::format("pre-cut cracks: {} ({} joints broken at the start)\n", model.crack_joints.size(), joints);
   }
-  log << RockOutputs::joint_sets_line(c, model);
-  log << RockOutputs::in_situ_line(c, model);
+  log << joint_sets_line(c, model);
+  log << in_situ_line(c, model);
   if (g.materials().tracer) log << "blast gas traced: the gas of the [[gas.region]] tables with blast_gas = true\n";
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
   const std::string checkpoint_path = (std::filesystem::path(c.output.directory) / "checkpoint.bin").string();

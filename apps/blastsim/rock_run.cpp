@@ -88,8 +88,8 @@ void run_rock_case(const Case& c, std::ostream& log, const RunOptions& options) 
   log << fmt::format("rock: {} triangles, {} joints, {} boundary edges; stable step {:.4g} s, dt {:.4g} s, {} steps\n",
                      solver.triangle_count(), solver.joint_count(), model.topology.boundary_edges.size(), solver.stable_dt(), dt,
                      static_cast<long long>(std::ceil(c.time.end / dt)));
-  log << RockOutputs::joint_sets_line(c, model);
-  log << RockOutputs::in_situ_line(c, model);
+  log << joint_sets_line(c, model);
+  log << in_situ_line(c, model);
   RockOutputs out(c, model);
   out.snapshot();
   out.monitor();

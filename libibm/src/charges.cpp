@@ -5,6 +5,7 @@
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/device_groups.hpp"
 #include "blastsim/core/error.hpp"
+#include "blastsim/core/output_files.hpp"
 #include "blastsim/ibm/charge_kernels.hpp"
 
 #include <algorithm>
@@ -85,6 +86,18 @@ Charges::Charges(const cip::GasSolver& gas, const std::vector<Charge>& charges, 
 }
 
 Charges::~Charges() = default;
+
+void Charges::run(Stage stage, CouplingContext& ctx, const StageStep& /*step*/) {
+  switch (stage) {
+    case Stage::cover: return cover(ctx);
+    case Stage::after_cells: return after_cells(ctx);
+    default: stage_not_run(*this, stage);
+  }
+}
+
+void Charges::report(const CouplingDiagnostics& d, CsvRecord& o) const {
+  o.real("charge_detonation_energy_J_per_m", d.charges.detonation_energy);
+}
 
 void Charges::cover(CouplingContext& ctx) {
   const cip::GasGrid g = ctx.gas.grid();

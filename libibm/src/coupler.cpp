@@ -5,11 +5,24 @@
 
 #include "blastsim/core/backend.hpp"
 #include "blastsim/core/checkpoint.hpp"
+#include "blastsim/core/output_files.hpp"
 #include "blastsim/ibm/coupler_kernels.hpp"
 
 #include <stdexcept>
 
 namespace blastsim::ibm {
+
+const char* stage_name(Stage s) {
+  static constexpr const char* names[kStageCount] = {"cover",     "update_cells", "after_cells",      "before_gas",
+                                                     "after_gas", "load_rock",    "before_rock_step", "after_rock"};
+  const int k = static_cast<int>(s);
+  return k >= 0 && k < kStageCount ? names[k] : "(no stage)";
+}
+
+void stage_not_run(const CouplingProcess& process, Stage stage) {
+  throw std::logic_error(std::string("coupling process '") + process.name() + "' was run at stage " + stage_name(stage) +
+                         ", which it does not declare");
+}
 
 GasRockCoupler::GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, const cip::GasPoint& ambient,
                                const CouplerOptions& options)
@@ -23,8 +36,30 @@ GasRockCoupler::GasRockCoupler(cip::GasSolver& gas, fdem::RockSolver& rock, cons
 GasRockCoupler::~GasRockCoupler() = default;
 
 CouplingProcess& GasRockCoupler::add(std::unique_ptr<CouplingProcess> process) {
+  for (const Stage s : process->stages()) {
+    const int k = static_cast<int>(s);
+    if (k < 0 || k >= kStageCount)
+      throw std::invalid_argument(std::string("GasRockCoupler::add: ") + process->name() + " declares an unknown stage");
+    std::vector<CouplingProcess*>& list = schedule_[k];
+    if (std::find(list.begin(), list.end(), process.get()) == list.end()) list.push_back(process.get());
+  }
   processes_.push_back(std::move(process));
   return *processes_.back();
+}
+
+std::string GasRockCoupler::schedule() const {
+  std::string out;
+  for (int k = 0; k < kStageCount; ++k) {
+    if (schedule_[k].empty()) continue;
+    out += stage_name(static_cast<Stage>(k));
+    for (std::size_t i = 0; i < schedule_[k].size(); ++i) out += (i ? ", " : ": ") + std::string(schedule_[k][i]->name());
+    out += "\n";
+  }
+  return out;
+}
+
+void GasRockCoupler::run(Stage stage, CouplingContext& ctx, const StageStep& step) {
+  for (CouplingProcess* p : schedule_[static_cast<int>(stage)]) p->run(stage, ctx, step);
 }
 
 CrackGasCoupling& GasRockCoupler::enable_crack_gas(const CrackGasOptions& options) {
@@ -53,16 +88,16 @@ CouplingContext GasRockCoupler::context() const {
 
 void GasRockCoupler::rock_to_gas() {
   CouplingContext ctx = context();
-  for (auto& p : processes_) p->cover(ctx);
-  for (auto& p : processes_) p->update_cells(ctx);
-  for (auto& p : processes_) p->after_cells(ctx);
+  run(Stage::cover, ctx);
+  run(Stage::update_cells, ctx);
+  run(Stage::after_cells, ctx);
   masks_set_ = true;
   gas_.apply_boundaries();
 }
 
 void GasRockCoupler::gas_to_rock() {
   CouplingContext ctx = context();
-  for (auto& p : processes_) p->load_rock(ctx);
+  run(Stage::load_rock, ctx);
 }
 
 void GasRockCoupler::fire_due() {
@@ -89,25 +124,23 @@ void GasRockCoupler::step(double dt, int rock_substeps) {
   if (rock_substeps < 1) throw std::invalid_argument("GasRockCoupler::step: rock_substeps must be at least 1");
   rock_to_gas();
   CouplingContext ctx = context();
-  for (auto& p : processes_) p->before_gas(ctx, dt);
+  const StageStep whole{dt, 0, rock_substeps};
+  run(Stage::before_gas, ctx, whole);
   gas_.step(dt);
-  for (auto& p : processes_) p->after_gas(ctx, dt);
+  run(Stage::after_gas, ctx, whole);
   gas_to_rock();
-  std::vector<CouplingProcess*> within;  // processes that update their loads between the rock's substeps
-  for (auto& p : processes_)
-    if (p->updates_rock_steps()) within.push_back(p.get());
-  if (within.empty()) {
+  if (schedule_[static_cast<int>(Stage::before_rock_step)].empty()) {  // no process works between the substeps
     rock_.advance(dt / rock_substeps, rock_substeps);
   } else {
     const double substep = dt / rock_substeps;
     rock_.advance(substep, rock_substeps, [&](int k) {
       CouplingContext c = context();
-      for (CouplingProcess* p : within) p->before_rock_step(c, k, substep);
+      run(Stage::before_rock_step, c, StageStep{substep, k, rock_substeps});
     });
   }
   {
     CouplingContext c = context();
-    for (auto& p : processes_) p->after_rock(c, dt, rock_substeps);
+    run(Stage::after_rock, c, whole);
   }
   fire_due();  // before the next step chooses its dt: the products' sound speed must set it
   const cip::GasGrid& g = gas_.grid();
@@ -126,6 +159,10 @@ CouplingDiagnostics GasRockCoupler::diagnostics() const {
   const CouplingContext ctx = context();
   for (const auto& p : processes_) p->add_diagnostics(ctx, d);
   return d;
+}
+
+void GasRockCoupler::report(const CouplingDiagnostics& d, CsvRecord& o) const {
+  for (const auto& p : processes_) p->report(d, o);
 }
 
 long GasRockCoupler::inactive_cells() const {

@@ -6,6 +6,7 @@
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/device_groups.hpp"
 #include "blastsim/core/error.hpp"
+#include "blastsim/core/output_files.hpp"
 #include "blastsim/ibm/crack_coupling_kernels.hpp"
 
 
@@ -94,6 +95,24 @@ HandoverGaps CrackGasCoupling::handover_gaps(const cip::GasGrid& g) const {
   return {gap, 0.5 * gap};
 }
 
+void CrackGasCoupling::run(Stage stage, CouplingContext& ctx, const StageStep& step) {
+  switch (stage) {
+    case Stage::cover: return cover(ctx);
+    case Stage::after_gas: return after_gas(ctx, step.dt);
+    case Stage::before_rock_step: return before_rock_step(ctx, step.substep, step.dt);
+    case Stage::after_rock: return after_rock(ctx);
+    default: stage_not_run(*this, stage);
+  }
+}
+
+void CrackGasCoupling::report(const CouplingDiagnostics& d, CsvRecord& o) const {
+  o.real("crack_gas_mass_kg_per_m", d.crack.mass).real("crack_gas_energy_J_per_m", d.crack.energy);
+  o.integer("crack_gas_segments", d.crack.gas_segments).integer("crack_wet_segments", d.crack.wet_segments);
+  o.real("crack_gas_pressure_max_Pa", d.crack.max_pressure, 6);
+  o.real("crack_gas_to_grid_J_per_m", d.crack.to_grid_energy).real("crack_gas_wall_work_J_per_m", d.crack.wall_work);
+  o.real("crack_gas_unpaid_work_J_per_m", d.crack.unpaid_work);
+}
+
 void CrackGasCoupling::cover(CouplingContext& ctx) {
   update_geometry(ctx);
   for_each_index("ibm.crack.gap_cover", crack_->segment_count(),
@@ -141,7 +160,7 @@ void CrackGasCoupling::before_rock_step(CouplingContext& ctx, int k, double dt) 
                                     crack_->options().residual_aperture, 0.5 * ctx.rock.last_step()});
 }
 
-void CrackGasCoupling::after_rock(CouplingContext& ctx, double /*dt*/, int /*rock_substeps*/) {
+void CrackGasCoupling::after_rock(CouplingContext& ctx) {
   const int ns = crack_->segment_count(), mouth_records = kMouthSamples * crack_->junction_count();
   const int records = mouth_records + ns;
   const cip::GasGrid g = ctx.gas.grid();

@@ -4,6 +4,7 @@
 
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/device_groups.hpp"
+#include "blastsim/core/output_files.hpp"
 #include "blastsim/ibm/gas_load_kernels.hpp"
 
 #include <string>
@@ -32,6 +33,20 @@ const char* gas_load_name(GasLoad load) {
 
 FacePointRule face_point_rule(GasLoad load) {
   return load == GasLoad::face_forces ? FacePointRule::surface_normal : FacePointRule::shape_functions;
+}
+
+void GasLoading::run(Stage stage, CouplingContext& ctx, const StageStep& step) {
+  switch (stage) {
+    case Stage::before_gas: return before_gas(ctx);
+    case Stage::load_rock: return load_rock(ctx);
+    case Stage::after_rock: return after_rock(ctx, step.dt, step.rock_substeps);
+    default: stage_not_run(*this, stage);
+  }
+}
+
+void GasLoading::report(const CouplingDiagnostics& d, CsvRecord& o) const {
+  o.real("gas_work_on_rock_J_per_m", d.gas_work_on_rock).real("gas_force_x_N_per_m", d.gas_force_on_rock[0], 6);
+  o.real("gas_force_y_N_per_m", d.gas_force_on_rock[1], 6);
 }
 
 void GasLoading::load_rock(CouplingContext& ctx) {
@@ -78,7 +93,7 @@ void GasLoading::keep_nodes(CouplingContext& ctx) {
   dt_prev_ = ctx.rock.last_step();
 }
 
-void GasLoading::before_gas(CouplingContext& ctx, double) {
+void GasLoading::before_gas(CouplingContext& ctx) {
   if (load_ == GasLoad::edge_pressures) return;
   const cip::GasStateView s = ctx.gas.state();
   const PaddedShape sh = ctx.gas.grid().padded_shape();

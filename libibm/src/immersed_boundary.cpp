@@ -5,6 +5,7 @@
 
 #include "blastsim/core/checkpoint.hpp"
 #include "blastsim/core/device_groups.hpp"
+#include "blastsim/core/output_files.hpp"
 
 #include <cmath>
 
@@ -35,6 +36,19 @@ ImmersedBoundary::ImmersedBoundary(const cip::GasGrid& grid, FacePointRule rule)
 ImmersedBoundary::~ImmersedBoundary() = default;
 
 FaceOwners<Access::read_write> ImmersedBoundary::owners() { return a_->owners.view(grid_.padded_shape()); }
+
+void ImmersedBoundary::run(Stage stage, CouplingContext& ctx, const StageStep& /*step*/) {
+  switch (stage) {
+    case Stage::cover: return cover(ctx);
+    case Stage::update_cells: return update_cells(ctx);
+    default: stage_not_run(*this, stage);
+  }
+}
+
+void ImmersedBoundary::report(const CouplingDiagnostics& d, CsvRecord& o) const {
+  o.integer("cells_covered", d.transitions.covered).integer("cells_uncovered", d.transitions.uncovered);
+  o.real("transition_energy_J_per_m", d.transitions.energy_created);
+}
 
 void ImmersedBoundary::cover(CouplingContext& ctx) {
   fill_device("ibm.clear_owner.u", a_->owners.u, kNoOwner);

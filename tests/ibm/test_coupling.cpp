@@ -3,6 +3,7 @@
 #include "blastsim/fdem/gmsh_mesh.hpp"
 #include "validation_courant.hpp"
 #include "blastsim/core/backend.hpp"
+#include "blastsim/core/output_files.hpp"
 #include "blastsim/fdem/rock_analysis.hpp"
 #include "blastsim/ibm/blasthole_monitor.hpp"
 #include "blastsim/ibm/budget.hpp"
@@ -12,8 +13,11 @@
 #include "hole_in_rock.hpp"
 
 #include <cmath>
-
 #include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 using namespace blastsim;
 
@@ -116,6 +120,69 @@ TEST_CASE("Cells that change state: covered cells hand their gas on, uncovered c
   CHECK(worst_mass < 1e-12);
   CHECK(worst_ambient < 1e-12);
   CHECK(d.transitions.mass_created == Approx(uncovered * air.density * g.cell_area()).epsilon(1e-12));
+}
+
+namespace {
+//! A process that only records the stages it is run at (the schedule's test).
+class StageRecorder : public ibm::CouplingProcess {
+ public:
+  struct Call {
+    ibm::Stage stage;
+    ibm::StageStep step;
+  };
+  std::vector<Call> calls;
+  const char* name() const override { return "recorder"; }
+  std::vector<ibm::Stage> stages() const override {
+    return {ibm::Stage::before_gas, ibm::Stage::before_rock_step, ibm::Stage::after_rock};
+  }
+  void run(ibm::Stage stage, ibm::CouplingContext&, const ibm::StageStep& step) override {
+    if (stage == ibm::Stage::cover) ibm::stage_not_run(*this, stage);  // never scheduled there
+    calls.push_back({stage, step});
+  }
+  void report(const ibm::CouplingDiagnostics&, CsvRecord& o) const override {
+    o.integer("recorder_calls", static_cast<long long>(calls.size()));
+  }
+};
+}  // namespace
+
+TEST_CASE("Coupling processes: the schedule is the stages each declares, run in order with their step", "[ibm][schedule]") {
+  BlockInAir c;
+  auto owned = std::make_unique<StageRecorder>();
+  StageRecorder& recorder = *owned;
+  c.coupler.add(std::move(owned));
+  const std::string schedule = c.coupler.schedule();
+  std::printf("schedule of the block in air with a recorder:\n%s", schedule.c_str());
+  // The immersed boundary and the gas load come first (GasRockCoupler's constructor), then the recorder.
+  CHECK(schedule == "cover: immersed boundary\nupdate_cells: immersed boundary\nbefore_gas: gas load, recorder\n"
+                    "load_rock: gas load\nbefore_rock_step: recorder\nafter_rock: gas load, recorder\n");
+  c.coupler.rock_to_gas();
+  CHECK(recorder.calls.empty());  // rock -> gas runs none of the recorder's stages
+  const double dt = 1e-7;
+  c.coupler.step(dt, 3);
+  REQUIRE(recorder.calls.size() == 5);  // before_gas, three substeps, after_rock
+  CHECK(recorder.calls[0].stage == ibm::Stage::before_gas);
+  CHECK(recorder.calls[0].step.dt == dt);
+  for (int k = 0; k < 3; ++k) {
+    CHECK(recorder.calls[1 + k].stage == ibm::Stage::before_rock_step);
+    CHECK(recorder.calls[1 + k].step.substep == k);
+    CHECK(recorder.calls[1 + k].step.dt == dt / 3);
+  }
+  CHECK(recorder.calls[4].stage == ibm::Stage::after_rock);
+  CHECK(recorder.calls[4].step.rock_substeps == 3);
+  // The report: each process's columns in the order added, written without knowing them.
+  CHECK(csv_text(CsvRecord::Mode::header, [&](CsvRecord& o) { c.coupler.report({}, o); }) ==
+        "cells_covered,cells_uncovered,transition_energy_J_per_m,gas_work_on_rock_J_per_m,gas_force_x_N_per_m,"
+        "gas_force_y_N_per_m,recorder_calls");
+  CHECK(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { recorder.report({}, o); }) == "5");
+  // A stage a process does not declare is refused, naming both.
+  ibm::CouplingContext ctx{c.gas, c.rock, air, 1e5, {}, false, 0.0};
+  try {
+    recorder.run(ibm::Stage::cover, ctx, {});
+    FAIL("no exception");
+  } catch (const std::logic_error& e) {
+    CHECK(std::string(e.what()).find("'recorder'") != std::string::npos);
+    CHECK(std::string(e.what()).find("cover") != std::string::npos);
+  }
 }
 
 TEST_CASE("I1: uniform gas around a closed block: edge pressures p, net force zero to round-off", "[ibm][I1]") {

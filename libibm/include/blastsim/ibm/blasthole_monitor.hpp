@@ -8,6 +8,7 @@
 #include "blastsim/core/checkpoint_traits.hpp"
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
+#include "blastsim/ibm/coupling_options.hpp"
 #include "blastsim/ibm/crack_gas_coupling.hpp"
 
 #include <algorithm>
@@ -16,13 +17,6 @@
 
 namespace blastsim::ibm {
 
-//! The hole and the rock's outer surface, circles about one centre [m].
-struct BlastholeGeometry {
-  std::array<double, 2> center{};
-  double hole_radius = 0;
-  double outer_radius = 0;
-  void validate() const;  //!< InputError unless 0 < hole_radius < outer_radius
-};
 
 //! One sample [SI units; stresses tension positive].
 struct BlastholeSample {

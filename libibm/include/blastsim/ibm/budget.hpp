@@ -23,6 +23,7 @@ struct CoupledBudget {
   //! joint work + contact work + damping) - (initial energy + other external work + the energy the processes
   //! added (cell transitions, burnt charges) + immersed-face work + positivity energy): zero for an exact budget.
   double residual = 0;
+  double relative = 0;  //!< [-] residual / (initial energy + charge_energy)
 };
 
 //! The energy a budget starts from: gas total energy plus rock kinetic and strain energy [J/m].
@@ -31,5 +32,10 @@ double initial_energy(const cip::GasSolver& gas, const fdem::RockSolver& rock);
 //! The budget now, against `initial` (initial_energy() at the start of the run).
 CoupledBudget coupled_budget(const cip::GasSolver& gas, const fdem::RockSolver& rock, const GasRockCoupler& coupler,
                              double initial);
+
+//! The budget's columns of the coupling's time series (docs/input.md, coupling_series.csv): the gas's and the
+//! rock's terms, the residual and its relative value, the broken joints and the crack length; then every
+//! process's own columns (GasRockCoupler::report()). In o.header() mode b is not read.
+void budget_columns(const CoupledBudget& b, const GasRockCoupler& coupler, CsvRecord& o);
 
 }  // namespace blastsim::ibm

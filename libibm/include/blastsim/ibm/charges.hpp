@@ -31,11 +31,8 @@ class Charges : public CouplingProcess {
   const std::vector<Charge>& charges() const { return charges_; }
   const ChargeProducts& products() const { return products_; }
 
-  //! An unburnt charge's cells: every face point of theirs that no triangle covers becomes a wall at rest.
-  void cover(CouplingContext& ctx) override;
-  //! The charge cells lit since the last burn burn (from the second rock_to_gas() on: the first sets the run's
-  //! initial state, and the budget counts what burning adds).
-  void after_cells(CouplingContext& ctx) override;
+  std::vector<Stage> stages() const override { return {Stage::cover, Stage::after_cells}; }
+  void run(Stage stage, CouplingContext& ctx, const StageStep& step) override;
   //! A charge has cells lit by t that have not burnt.
   bool due(double t) const override;
   //! The earliest initiation time of a charge later than t [s]: a step lands on it, so that a charge fires at
@@ -50,10 +47,17 @@ class Charges : public CouplingProcess {
 
   //! What the burnt cells put in; their energy less what the cells held is energy added (the budget).
   void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
+  //! charge_detonation_energy_J_per_m (all charges).
+  void report(const CouplingDiagnostics& d, CsvRecord& o) const override;
   void write_checkpoint(CheckpointWriter& w) const override;
   void read_checkpoint(CheckpointReader& r) override;
 
  private:
+  //! An unburnt charge's cells: every face point of theirs that no triangle covers becomes a wall at rest.
+  void cover(CouplingContext& ctx);
+  //! The charge cells lit since the last burn burn (from the second rock_to_gas() on: the first sets the run's
+  //! initial state, and the budget counts what burning adds).
+  void after_cells(CouplingContext& ctx);
   std::vector<Charge> charges_;
   ChargeProducts products_;
   std::vector<std::array<double, 2>> window_;  // per charge: its first and last lighting time [s]

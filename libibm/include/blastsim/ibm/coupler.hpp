@@ -9,16 +9,19 @@
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 #include "blastsim/ibm/charges.hpp"
+#include "blastsim/ibm/coupling_options.hpp"
 #include "blastsim/ibm/coupling_process.hpp"
 #include "blastsim/ibm/crack_gas_coupling.hpp"
 #include "blastsim/ibm/gas_loading.hpp"
 #include "blastsim/ibm/immersed_boundary.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace blastsim::ibm {
@@ -44,15 +47,6 @@ inline CoupledStep plan_coupled_step(double t, double gas_dt, double rock_dt, bo
   return {dt, subcycling ? rock_substeps(dt, rock_dt) : 1};
 }
 
-//! How the coupled steps are made (the driver's [time] and [coupling] keys).
-struct CouplerOptions {
-  GasLoad gas_load = GasLoad::edge_pressures;  //!< how the grid gas loads the rock (gas_loading.hpp)
-  //! [-] the gas's Courant number; unset: recommended_courant() of the gas's transport and the gas load
-  std::optional<double> courant;
-  double rock_dt = 0;            //!< [s] the rock's step (0: its stable step)
-  bool rock_subcycling = false;  //!< the rock takes as many steps of at most rock_dt as fill each gas step
-  std::optional<double> fixed_dt;  //!< [s] every step's dt (the caller checks it against the limits)
-};
 
 class GasRockCoupler {
  public:
@@ -67,8 +61,11 @@ class GasRockCoupler {
   CrackGasCoupling& enable_crack_gas(const CrackGasOptions& options);
   //! Places explosive charges in the gas (Charges; docs/coupling.md "Charges").
   Charges& set_charges(const std::vector<Charge>& charges, const ChargeProducts& products);
-  //! Any other process, after the ones already there.
+  //! Any other process, after the ones already there: it joins the schedule of each stage it declares.
   CouplingProcess& add(std::unique_ptr<CouplingProcess> process);
+  //! The schedule: per stage, in the order they run, the processes that run it ("cover: immersed boundary,
+  //! crack gas"), one line a stage; a stage no process runs is left out.
+  std::string schedule() const;
   const CrackGasCoupling* crack_gas() const { return crack_; }  //!< null unless enabled
   CrackGasCoupling* crack_gas() { return crack_; }
   const Charges* charges() const { return charges_; }           //!< null without charges
@@ -105,6 +102,9 @@ class GasRockCoupler {
   // --- diagnostics (device reductions) ---
   //! What every process reports, summed into one record (coupling_process.hpp).
   CouplingDiagnostics diagnostics() const;
+  //! Every process's columns of the coupling's time series from `d` (diagnostics(); zeros in header mode), in
+  //! the order the processes were added: a record the caller writes without knowing the processes.
+  void report(const CouplingDiagnostics& d, CsvRecord& o) const;
   //! Number of inactive (rock-covered) cells.
   long inactive_cells() const;
   //! Gas mass and energy in the active cells whose centres lie in `region`.
@@ -123,7 +123,10 @@ class GasRockCoupler {
   fdem::RockSolver& rock_;
   cip::GasPoint ambient_;
   CouplerOptions options_;
-  std::vector<std::unique_ptr<CouplingProcess>> processes_;  // in calling order
+  std::vector<std::unique_ptr<CouplingProcess>> processes_;  // in the order added
+  std::array<std::vector<CouplingProcess*>, kStageCount> schedule_;  // per stage, the processes that run it
+  //! Runs `stage` of every process scheduled for it, in order.
+  void run(Stage stage, CouplingContext& ctx, const StageStep& step = {});
   ImmersedBoundary* immersed_ = nullptr;  // the first process: its face owners are everyone's
   CrackGasCoupling* crack_ = nullptr;
   Charges* charges_ = nullptr;

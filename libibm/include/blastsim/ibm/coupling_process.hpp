@@ -14,6 +14,11 @@
 
 #include <array>
 #include <limits>
+#include <vector>
+
+namespace blastsim {
+class CsvRecord;  // core/output_files.hpp
+}
 
 namespace blastsim::ibm {
 
@@ -62,33 +67,34 @@ struct CouplingContext {
   double owner_margin;
 };
 
-//! The interface of a process: a hook per stage of GasRockCoupler::step(), each a no-op unless overridden.
+//! The stages of a coupled step, in the order GasRockCoupler runs them (docs/coupling.md "The coupled step").
+//! rock -> gas (GasRockCoupler::rock_to_gas()): cover, update_cells, after_cells; around the gas step:
+//! before_gas, after_gas; gas -> rock (gas_to_rock()): load_rock; the rock's substeps: before_rock_step before
+//! each, after_rock after the last.
+enum class Stage : int { cover, update_cells, after_cells, before_gas, after_gas, load_rock, before_rock_step, after_rock };
+inline constexpr int kStageCount = 8;
+//! "cover", "update_cells", ... (the schedule's listing).
+const char* stage_name(Stage s);
+
+//! The step a stage runs in: dt [s] is the coupled step's, except in Stage::before_rock_step, where it is the
+//! rock substep's; substep: that substep (0 .. rock_substeps - 1).
+struct StageStep {
+  double dt = 0;
+  int substep = 0;
+  int rock_substeps = 1;
+};
+
+//! The interface of a process: it declares the stages it runs (data: GasRockCoupler builds its schedule from
+//! them once, when the process is added, and can print it), and runs each in run().
 class CouplingProcess {
  public:
   virtual ~CouplingProcess() = default;
-  //! Short name (messages).
+  //! Short name (messages, the schedule).
   virtual const char* name() const = 0;
-
-  // --- rock -> gas (GasRockCoupler::rock_to_gas()), in this order ---
-  //! Marks the face points the process holds as solid in ctx.owners.
-  virtual void cover(CouplingContext& /*ctx*/) {}
-  //! The gas's masks, imposed velocities and the cells that change state, from the owners.
-  virtual void update_cells(CouplingContext& /*ctx*/) {}
-  //! After the new masks are in place (a charge's cells burn).
-  virtual void after_cells(CouplingContext& /*ctx*/) {}
-
-  // --- around the gas step of dt [s] ---
-  virtual void before_gas(CouplingContext& /*ctx*/, double /*dt*/) {}
-  virtual void after_gas(CouplingContext& /*ctx*/, double /*dt*/) {}
-
-  // --- gas -> rock (GasRockCoupler::gas_to_rock()): the loads for the rock's next steps ---
-  virtual void load_rock(CouplingContext& /*ctx*/) {}
-  //! True when the process works before each of the rock's substeps (before_rock_step()).
-  virtual bool updates_rock_steps() const { return false; }
-  //! Before rock substep k (0 .. substeps - 1) of dt [s] of a coupled step; load_rock() ran before substep 0.
-  virtual void before_rock_step(CouplingContext& /*ctx*/, int /*k*/, double /*dt*/) {}
-  //! After the rock's `rock_substeps` steps that fill the coupled step of dt [s].
-  virtual void after_rock(CouplingContext& /*ctx*/, double /*dt*/, int /*rock_substeps*/) {}
+  //! The stages this process runs, each once per occurrence in a step (GasRockCoupler::schedule()).
+  virtual std::vector<Stage> stages() const = 0;
+  //! Runs `stage`, one of stages().
+  virtual void run(Stage stage, CouplingContext& ctx, const StageStep& step) = 0;
 
   // --- events ---
   //! True when the process needs a rock_to_gas() at gas time t [s] before the next dt is chosen (a charge
@@ -102,9 +108,17 @@ class CouplingProcess {
   virtual double owner_margin(const cip::GasGrid& /*grid*/) const { return 0.0; }
 
   // --- what it reports and keeps ---
+  //! Adds its part to the coupling's diagnostics (device reductions).
   virtual void add_diagnostics(const CouplingContext& /*ctx*/, CouplingDiagnostics& /*d*/) const {}
+  //! Its columns of the coupling's time series, named with their units, from its part of `d` (a record the caller
+  //! writes without knowing the process: GasRockCoupler::report()); in o.header() mode d is all zeros.
+  virtual void report(const CouplingDiagnostics& /*d*/, CsvRecord& /*o*/) const {}
   virtual void write_checkpoint(CheckpointWriter& /*w*/) const {}
   virtual void read_checkpoint(CheckpointReader& /*r*/) {}
 };
+
+//! Throws std::logic_error naming the process and the stage: run() was given a stage the process does not
+//! declare (a process's run() ends its switch with it).
+[[noreturn]] void stage_not_run(const CouplingProcess& process, Stage stage);
 
 }  // namespace blastsim::ibm

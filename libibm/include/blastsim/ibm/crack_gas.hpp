@@ -17,33 +17,6 @@
 
 namespace blastsim::ibm {
 
-//! Parameters of the crack gas model (input section [crack_gas], docs/input.md; docs/coupling.md "Gas in the
-//! cracks" gives their sources).
-struct CrackGasOptions {
-  double residual_aperture = 1e-5;  //!< [m] aperture of a crack whose faces touch (its gas volume is L x this)
-  //! A constant rough-wall Darcy friction factor [-]; unset: Louis's law of the relative roughness
-  //! roughness / (2 w) (louis_friction()), which falls as the crack opens.
-  std::optional<double> friction_factor;
-  std::optional<double> roughness;  //!< [m] asperity height of the crack walls; unset: the residual aperture
-  double viscosity = 5e-5;          //!< gas dynamic viscosity [Pa s] (laminar friction floor)
-  double courant = 0.4;             //!< Courant number of the channel solver's substeps, in [kMinCourant, 1]
-  //! The smallest Courant number accepted: the substeps of one coupled step grow as 1 / courant, and below this
-  //! a run takes more than 40 times the default's channel work for no accuracy (the scheme's error is that of its
-  //! cells, not of its step, at any Courant number below 1).
-  static constexpr double kMinCourant = 0.01;
-  bool second_order = true;         //!< MUSCL-Hancock along straight chains (first order otherwise)
-  //! [cells] a crack whose faces are this many grid cells apart is the grid's (its gas handed to the cells it
-  //! opens); narrower ones carry their own gas and are solid to the grid (docs/coupling.md "Hand-over")
-  double handover_width = kDefaultHandoverWidth;
-  static constexpr double kDefaultHandoverWidth = 2.0;
-  //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0, roughness > 0,
-  //! viscosity >= 0, kMinCourant <= courant <= 1 and handover_width >= 1 (all finite).
-  void validate() const;
-  //! The kernels' flow parameters: a constant friction factor, or Louis's law with the roughness.
-  ChannelFlowParams flow() const {
-    return {friction_factor.value_or(-1.0), roughness.value_or(residual_aperture), viscosity};
-  }
-};
 
 //! Per segment (joint), for output: the aperture [m] of a crack (0 for an intact joint), and the pressure [Pa]
 //! and mass [kg/m] of its own gas (0 where it has none).

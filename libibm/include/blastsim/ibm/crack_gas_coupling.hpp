@@ -31,24 +31,10 @@ class CrackGasCoupling : public CouplingProcess {
   CrackGas& crack_gas() { return *crack_; }
   const CrackGas& crack_gas() const { return *crack_; }
 
-  //! Rock -> gas (before the masks are made): every channel's length and aperture from the rock (crack_width());
-  //! joints that just broke become empty gas segments; a gas segment whose volume changes does p dV on its
-  //! walls; one whose faces are CrackGasOptions::handover_width cells apart hands its gas to the grid
-  //! (CrackGeometryKernel); the gaps of the cracks that keep their own gas are solid to the grid
-  //! (CrackGapCoverKernel).
-  void cover(CouplingContext& ctx) override;
-  //! After the gas step of dt [s]: the mouths from the cells' new gas, and what each may draw on over the step
-  //! (the cells they share, sorted by cell).
-  void after_gas(CouplingContext& ctx, double dt) override;
-  //! Before every rock substep k of dt [s]: the channels' geometry from the rock as it stands (after substep 0:
-  //! joints that broke in the last substep join the network, CrackGeometryKernel), the channels' own steps over
-  //! dt (as many as their Courant limit needs), then their gas's pressure on the crack faces for the substep
-  //! (CrackCushionKernel). So gas enters a crack one rock substep after it breaks, whatever the gas step.
-  bool updates_rock_steps() const override { return true; }
-  void before_rock_step(CouplingContext& ctx, int k, double dt) override;
-  //! After the rock's substeps: what the mouths gave to or took from the cells over them and the gas handed
-  //! over, deposited (sorted by cell: the same bytes whatever the thread order).
-  void after_rock(CouplingContext& ctx, double dt, int rock_substeps) override;
+  std::vector<Stage> stages() const override {
+    return {Stage::cover, Stage::after_gas, Stage::before_rock_step, Stage::after_rock};
+  }
+  void run(Stage stage, CouplingContext& ctx, const StageStep& step) override;
 
   //! Pre-cut cracks whose faces touch in the mesh but stand `aperture` [m] apart (a hydraulic opening added
   //! to the faces' own; [[rock.crack]] initial_aperture). Throws InputError for a joint out of range or a
@@ -75,10 +61,32 @@ class CrackGasCoupling : public CouplingProcess {
 
   //! The crack gas's totals; its energy is held outside the grid and the rock (CouplingDiagnostics).
   void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
+  //! crack_gas_mass_kg_per_m, crack_gas_energy_J_per_m, crack_gas_segments, crack_wet_segments,
+  //! crack_gas_pressure_max_Pa, crack_gas_to_grid_J_per_m, crack_gas_wall_work_J_per_m,
+  //! crack_gas_unpaid_work_J_per_m (docs/input.md).
+  void report(const CouplingDiagnostics& d, CsvRecord& o) const override;
   void write_checkpoint(CheckpointWriter& w) const override;
   void read_checkpoint(CheckpointReader& r) override;
 
  private:
+  //! Rock -> gas (before the masks are made): every channel's length and aperture from the rock (crack_width());
+  //! joints that just broke become empty gas segments; a gas segment whose volume changes does p dV on its
+  //! walls; one whose faces are CrackGasOptions::handover_width cells apart hands its gas to the grid
+  //! (CrackGeometryKernel); the gaps of the cracks that keep their own gas are solid to the grid
+  //! (CrackGapCoverKernel).
+  void cover(CouplingContext& ctx);
+  //! After the gas step of dt [s]: the mouths from the cells' new gas, and what each may draw on over the step
+  //! (the cells they share, sorted by cell).
+  void after_gas(CouplingContext& ctx, double dt);
+  //! Before every rock substep k of dt [s]: the channels' geometry from the rock as it stands (after substep 0:
+  //! joints that broke in the last substep join the network, CrackGeometryKernel), the channels' own steps over
+  //! dt (as many as their Courant limit needs), then their gas's pressure on the crack faces for the substep
+  //! (CrackCushionKernel). So gas enters a crack one rock substep after it breaks, whatever the gas step.
+  void before_rock_step(CouplingContext& ctx, int k, double dt);
+  //! After the rock's substeps: what the mouths gave to or took from the cells over them and the gas handed
+  //! over, deposited (sorted by cell: the same bytes whatever the thread order).
+  void after_rock(CouplingContext& ctx);
+
   std::unique_ptr<CrackGas> crack_;
   //! Every channel's length, aperture and kind from the rock (CrackGeometryKernel).
   void update_geometry(CouplingContext& ctx);

@@ -16,6 +16,7 @@
 #include "blastsim/core/access.hpp"
 #include "blastsim/core/field2d.hpp"
 #include "blastsim/core/macros.hpp"
+#include "blastsim/ibm/coupling_options.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -177,12 +178,6 @@ BLAST_HD inline RoughChannelFriction louis_friction(double r) {
   return {1.0 / (l * l), high ? 1.0 + 8.8 * r * sqrt(r) : 1.0};
 }
 
-//! The physical parameters of the channel flow (CrackGasOptions' kernel part).
-struct ChannelFlowParams {
-  double friction_factor;  //!< a constant rough-wall Darcy factor [-], or < 0: Louis's law of the roughness
-  double roughness;        //!< asperity height k [m] of Louis's law
-  double viscosity;        //!< [Pa s], laminar floor of the friction
-};
 
 //! Friction rate [1/s] of a channel of aperture w [m]: dq/dt = -rate q, from the Darcy-Weisbach wall shear
 //! tau = f rho u |u| / 8 on both walls (hydraulic diameter 2 w): rate = f |u| / (4 w), with f the larger of the

@@ -3,6 +3,7 @@
 //! paper's edge pressures, or the forces of the prescribed faces.
 #pragma once
 
+#include "blastsim/ibm/coupling_options.hpp"
 #include "blastsim/ibm/coupling_process.hpp"
 #include "blastsim/ibm/immersed_boundary.hpp"
 
@@ -10,31 +11,6 @@
 
 namespace blastsim::ibm {
 
-//! How the grid gas loads the rock (docs/coupling.md "Gas -> rock"). Crack faces with their own gas (crack gas)
-//! take that gas's pressure either way (CrackGasCoupling).
-enum class GasLoad {
-  //! The paper's rule: every exposed edge takes the pressure of the active cell it faces (or the nearest one).
-  edge_pressures,
-  //! The force the gas's momentum equation applied at each prescribed face, put on the rock surface it stands
-  //! for, along the surface normal, with the weights that gave the face its imposed (normal) velocity: the
-  //! rock receives exactly the work the gas did on its immersed faces.
-  face_forces,
-  //! The paper's edge pressures, with the gas paying the rock's work: after the rock's substeps every active cell
-  //! takes back the work its energy equation did on its prescribed faces and pays the work of the edges it loaded,
-  //! as the rock's ledger counts it (docs/coupling.md "Edge pressures that the gas pays for").
-  edge_pressures_paid,
-};
-//! "edges", "faces" or "edges_paid" (the driver's `coupling.gas_load`).
-const char* gas_load_name(GasLoad load);
-//! The face-point rule that goes with a load: face forces need the faces to move with the surface they load.
-FacePointRule face_point_rule(GasLoad load);
-//! The default Courant number of a coupled run: the transport's (cip::recommended_courant()), and the paper's
-//! with its edge pressures, whose energy budget holds at the paper's number only when the rock subcycles
-//! (docs/performance.md, "The Courant number"). Face forces and paid edge pressures pay the rock's work over the
-//! substeps (docs/coupling.md).
-inline double recommended_courant(cip::Transport t, GasLoad load) {
-  return load == GasLoad::edge_pressures ? cip::kPaperCourant : cip::recommended_courant(t);
-}
 
 namespace detail {
 struct LoadWorkArrays;
@@ -50,27 +26,32 @@ class GasLoading : public CouplingProcess {
   const char* name() const override { return "gas load"; }
   GasLoad load() const { return load_; }
 
-  //! GasLoad::edge_pressures: pressure on every exposed edge, that of the active cell the edge faces; where
-  //! that cell is inactive, a boundary edge takes the nearest active cell within 2 cells (the paper's rule) and
-  //! a crack face the ambient pressure. GasLoad::face_forces: forces on the nodes from the prescribed faces
-  //! (FaceLoadKernel), edge pressures 0.
-  void load_rock(CouplingContext& ctx) override;
-  //! GasLoad::face_forces and edge_pressures_paid: keeps the face velocities the gas step starts from (the energy
-  //! equation's).
-  void before_gas(CouplingContext& ctx, double dt) override;
-  //! GasLoad::face_forces: the gas pays the work the rock received from the face forces over the step, which
-  //! its energy equation counted at the faces' velocities instead of the rock's motion (FaceWorkLagKernel).
-  //! GasLoad::edge_pressures_paid: each active cell takes back what its energy equation paid at its prescribed
-  //! faces (PrescribedFaceRefundKernel) and pays the work of the edges it loaded (EdgeWorkKernel,
-  //! EdgeWorkChargeKernel).
-  void after_rock(CouplingContext& ctx, double dt, int rock_substeps) override;
+  std::vector<Stage> stages() const override { return {Stage::before_gas, Stage::load_rock, Stage::after_rock}; }
+  void run(Stage stage, CouplingContext& ctx, const StageStep& step) override;
+
   //! The force of the gas on the rock (a device reduction) and its cumulative work (the rock's ledger).
   void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
+  //! gas_work_on_rock_J_per_m, gas_force_x_N_per_m, gas_force_y_N_per_m.
+  void report(const CouplingDiagnostics& d, CsvRecord& o) const override;
   //! The checkpoint records the load; read_checkpoint() refuses another.
   void write_checkpoint(CheckpointWriter& w) const override;
   void read_checkpoint(CheckpointReader& r) override;
 
  private:
+  //! GasLoad::edge_pressures: pressure on every exposed edge, that of the active cell the edge faces; where
+  //! that cell is inactive, a boundary edge takes the nearest active cell within 2 cells (the paper's rule) and
+  //! a crack face the ambient pressure. GasLoad::face_forces: forces on the nodes from the prescribed faces
+  //! (FaceLoadKernel), edge pressures 0.
+  void load_rock(CouplingContext& ctx);
+  //! GasLoad::face_forces and edge_pressures_paid: keeps the face velocities the gas step starts from (the energy
+  //! equation's).
+  void before_gas(CouplingContext& ctx);
+  //! GasLoad::face_forces: the gas pays the work the rock received from the face forces over the step, which
+  //! its energy equation counted at the faces' velocities instead of the rock's motion (FaceWorkLagKernel).
+  //! GasLoad::edge_pressures_paid: each active cell takes back what its energy equation paid at its prescribed
+  //! faces (PrescribedFaceRefundKernel) and pays the work of the edges it loaded (EdgeWorkKernel,
+  //! EdgeWorkChargeKernel).
+  void after_rock(CouplingContext& ctx, double dt, int rock_substeps);
   void keep_nodes(CouplingContext& ctx);  // the rock's nodes and previous step before its substeps
   GasLoad load_;
   // GasLoad::face_forces, within one coupled step (nothing to checkpoint): the gas's face velocities at the

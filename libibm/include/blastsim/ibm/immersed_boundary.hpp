@@ -5,17 +5,13 @@
 //! their gas on or start from the ambient state, counted in a ledger.
 #pragma once
 
+#include "blastsim/ibm/coupling_options.hpp"
 #include "blastsim/ibm/coupling_process.hpp"
 
 #include <memory>
 
 namespace blastsim::ibm {
 
-//! How a covered face point takes the rock's velocity (face_point_coupling()).
-enum class FacePointRule {
-  shape_functions,  //!< the covering triangle's shape functions at the point (the paper's rule)
-  surface_normal,   //!< the normal motion of the exposed edge it stands for (with face forces)
-};
 
 namespace detail {
 struct ImmersedBoundaryArrays;
@@ -33,22 +29,27 @@ class ImmersedBoundary : public CouplingProcess {
   FaceOwners<Access::read_write> owners();
   FacePointRule rule() const { return rule_; }
 
-  //! Clears the owners, then rasterises every triangle over the face points of its bounding box; a point
-  //! covered by several (overlapping) triangles takes the one of highest index, found with an
-  //! order-independent atomic maximum, so the result is deterministic.
-  void cover(CouplingContext& ctx) override;
-  //! Imposed velocities, the new mask and the cells that change state: the first call (ctx.first) sets every
-  //! covered cell to the ambient state; later calls keep mass and energy when cells change state: a covered cell
-  //! gives its gas in equal shares to its active edge neighbours; an uncovered cell starts from the ambient
-  //! state (counted in the ledger).
-  void update_cells(CouplingContext& ctx) override;
+  std::vector<Stage> stages() const override { return {Stage::cover, Stage::update_cells}; }
+  void run(Stage stage, CouplingContext& ctx, const StageStep& step) override;
 
   //! The transitions so far, and the energy they added (device reductions).
   void add_diagnostics(const CouplingContext& ctx, CouplingDiagnostics& d) const override;
+  //! cells_covered, cells_uncovered, transition_energy_J_per_m.
+  void report(const CouplingDiagnostics& d, CsvRecord& o) const override;
   void write_checkpoint(CheckpointWriter& w) const override;
   void read_checkpoint(CheckpointReader& r) override;
 
  private:
+  //! Clears the owners, then rasterises every triangle over the face points of its bounding box; a point
+  //! covered by several (overlapping) triangles takes the one of highest index, found with an
+  //! order-independent atomic maximum, so the result is deterministic.
+  void cover(CouplingContext& ctx);
+  //! Imposed velocities, the new mask and the cells that change state: the first call (ctx.first) sets every
+  //! covered cell to the ambient state; later calls keep mass and energy when cells change state: a covered cell
+  //! gives its gas in equal shares to its active edge neighbours; an uncovered cell starts from the ambient
+  //! state (counted in the ledger).
+  void update_cells(CouplingContext& ctx);
+
   cip::GasGrid grid_;
   FacePointRule rule_;
   std::unique_ptr<detail::ImmersedBoundaryArrays> a_;

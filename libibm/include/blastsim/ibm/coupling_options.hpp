@@ -1,0 +1,99 @@
+//! \file coupling_options.hpp
+//! \brief The coupling's options, apart from its processes: how the gas loads the rock, the crack gas model's
+//! parameters, the coupled step's policy, the blasthole monitor's circles. Host code with no device arrays: the
+//! driver's case description includes this header, not the processes'.
+#pragma once
+
+#include "blastsim/cip/gas_types.hpp"
+
+#include <array>
+#include <optional>
+
+namespace blastsim::ibm {
+
+//! How a covered face point takes the rock's velocity (face_point_coupling()).
+enum class FacePointRule {
+  shape_functions,  //!< the covering triangle's shape functions at the point (the paper's rule)
+  surface_normal,   //!< the normal motion of the exposed edge it stands for (with face forces)
+};
+
+//! How the grid gas loads the rock (docs/coupling.md "Gas -> rock"). Crack faces with their own gas (crack gas)
+//! take that gas's pressure either way (CrackGasCoupling).
+enum class GasLoad {
+  //! The paper's rule: every exposed edge takes the pressure of the active cell it faces (or the nearest one).
+  edge_pressures,
+  //! The force the gas's momentum equation applied at each prescribed face, put on the rock surface it stands
+  //! for, along the surface normal, with the weights that gave the face its imposed (normal) velocity: the
+  //! rock receives exactly the work the gas did on its immersed faces.
+  face_forces,
+  //! The paper's edge pressures, with the gas paying the rock's work: after the rock's substeps every active cell
+  //! takes back the work its energy equation did on its prescribed faces and pays the work of the edges it loaded,
+  //! as the rock's ledger counts it (docs/coupling.md "Edge pressures that the gas pays for").
+  edge_pressures_paid,
+};
+//! "edges", "faces" or "edges_paid" (the driver's `coupling.gas_load`).
+const char* gas_load_name(GasLoad load);
+//! The face-point rule that goes with a load: face forces need the faces to move with the surface they load.
+FacePointRule face_point_rule(GasLoad load);
+//! The default Courant number of a coupled run: the transport's (cip::recommended_courant()), and the paper's
+//! with its edge pressures, whose energy budget holds at the paper's number only when the rock subcycles
+//! (docs/performance.md, "The Courant number"). Face forces and paid edge pressures pay the rock's work over the
+//! substeps (docs/coupling.md).
+inline double recommended_courant(cip::Transport t, GasLoad load) {
+  return load == GasLoad::edge_pressures ? cip::kPaperCourant : cip::recommended_courant(t);
+}
+
+//! The physical parameters of the channel flow (CrackGasOptions' kernel part).
+struct ChannelFlowParams {
+  double friction_factor;  //!< a constant rough-wall Darcy factor [-], or < 0: Louis's law of the roughness
+  double roughness;        //!< asperity height k [m] of Louis's law
+  double viscosity;        //!< [Pa s], laminar floor of the friction
+};
+
+//! Parameters of the crack gas model (input section [crack_gas], docs/input.md; docs/coupling.md "Gas in the
+//! cracks" gives their sources).
+struct CrackGasOptions {
+  double residual_aperture = 1e-5;  //!< [m] aperture of a crack whose faces touch (its gas volume is L x this)
+  //! A constant rough-wall Darcy friction factor [-]; unset: Louis's law of the relative roughness
+  //! roughness / (2 w) (louis_friction()), which falls as the crack opens.
+  std::optional<double> friction_factor;
+  std::optional<double> roughness;  //!< [m] asperity height of the crack walls; unset: the residual aperture
+  double viscosity = 5e-5;          //!< gas dynamic viscosity [Pa s] (laminar friction floor)
+  double courant = 0.4;             //!< Courant number of the channel solver's substeps, in [kMinCourant, 1]
+  //! The smallest Courant number accepted: the substeps of one coupled step grow as 1 / courant, and below this
+  //! a run takes more than 40 times the default's channel work for no accuracy (the scheme's error is that of its
+  //! cells, not of its step, at any Courant number below 1).
+  static constexpr double kMinCourant = 0.01;
+  bool second_order = true;         //!< MUSCL-Hancock along straight chains (first order otherwise)
+  //! [cells] a crack whose faces are this many grid cells apart is the grid's (its gas handed to the cells it
+  //! opens); narrower ones carry their own gas and are solid to the grid (docs/coupling.md "Hand-over")
+  double handover_width = kDefaultHandoverWidth;
+  static constexpr double kDefaultHandoverWidth = 2.0;
+  //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0, roughness > 0,
+  //! viscosity >= 0, kMinCourant <= courant <= 1 and handover_width >= 1 (all finite).
+  void validate() const;
+  //! The kernels' flow parameters: a constant friction factor, or Louis's law with the roughness.
+  ChannelFlowParams flow() const {
+    return {friction_factor.value_or(-1.0), roughness.value_or(residual_aperture), viscosity};
+  }
+};
+
+//! How the coupled steps are made (the driver's [time] and [coupling] keys).
+struct CouplerOptions {
+  GasLoad gas_load = GasLoad::edge_pressures;  //!< how the grid gas loads the rock (gas_loading.hpp)
+  //! [-] the gas's Courant number; unset: recommended_courant() of the gas's transport and the gas load
+  std::optional<double> courant;
+  double rock_dt = 0;            //!< [s] the rock's step (0: its stable step)
+  bool rock_subcycling = false;  //!< the rock takes as many steps of at most rock_dt as fill each gas step
+  std::optional<double> fixed_dt;  //!< [s] every step's dt (the caller checks it against the limits)
+};
+
+//! The hole and the rock's outer surface, circles about one centre [m].
+struct BlastholeGeometry {
+  std::array<double, 2> center{};
+  double hole_radius = 0;
+  double outer_radius = 0;
+  void validate() const;  //!< InputError unless 0 < hole_radius < outer_radius
+};
+
+}  // namespace blastsim::ibm
