@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Compiles and links the CUDA backend with nvcc, nothing is run (CI has no GPU), so the GPU build never rots.
 # Usage: scripts/check-cuda-build.sh [--all]   (--all: the test programs too)
-# Preset "cuda-check": every source through nvcc's front end to PTX for compute_90, without assembling the
-# PTX to sm_90 machine code (ptxas took two thirds of the compile and fails only on resource limits, which
-# scripts/cuda-stack-frames.sh reports). Needs the CUDA toolkit at /usr/local/cuda.
+# Preset "cuda-check": every source through nvcc's front end to PTX for compute_90, device code unoptimised
+# (-Xcicc -O0: the device optimiser took half of each unit's time) and without assembling the PTX to sm_90
+# machine code (ptxas fails only on resource limits, which scripts/cuda-stack-frames.sh reports for the
+# optimised kernels). Needs the CUDA toolkit at /usr/local/cuda.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -x /usr/local/cuda/bin/nvcc ]; then
