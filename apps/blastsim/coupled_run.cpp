@@ -511,6 +511,10 @@ void run_coupled_case(const Case& c, std::ostream& log, const RunOptions& option
   log << joint_sets_line(c, model);
   log << in_situ_line(c, model);
   if (g.materials().tracer) log << "blast gas traced: the gas of the [[gas.region]] tables with blast_gas = true\n";
+  std::string stages = coupler.schedule();  // a line a stage, made one line: "stage: processes; ..."
+  if (!stages.empty() && stages.back() == '\n') stages.pop_back();
+  for (std::size_t k = stages.find('\n'); k != std::string::npos; k = stages.find('\n', k)) stages.replace(k, 1, "; ");
+  log << "coupling stages: " << stages << "\n";
   // A restart accepts its checkpoint (checksum, structure, the same case) before it touches the output folder.
   const std::string checkpoint_path = (std::filesystem::path(c.output.directory) / "checkpoint.bin").string();
   std::optional<CheckpointReader> reader;

@@ -18,11 +18,12 @@ using test::RigidCrackGeometry;
 namespace {
 
 //! A straight channel of `n` segments of length `h` [m] and aperture w [m], empty, fed at its mouth (junction 0)
-//! by a reservoir of an ideal gas (gamma 1.4) at p0 = 10 MPa and Theta0 = p0 / rho0 = 2.9e5 J/kg (about 1000 K),
-//! closed at the far end. Returns the distance [m] from the mouth where its pressure first falls to kappa p0 at
-//! time t [s] (linear between segment centres).
-double channel_isobar(int n, double h, double w, const ibm::CrackGasOptions& opt, double t, double kappa) {
-  const double p0 = 1e7, rho0 = p0 / 2.9e5;
+//! by a reservoir of an ideal gas (gamma 1.4) at p0 (10 MPa unless given) and Theta0 = p0 / rho0 = 2.9e5 J/kg
+//! (about 1000 K), closed at the far end. Returns the distance [m] from the mouth where its pressure first falls
+//! to kappa p0 at time t [s] (linear between segment centres).
+double channel_isobar(int n, double h, double w, const ibm::CrackGasOptions& opt, double t, double kappa,
+                      double p0 = 1e7) {
+  const double rho0 = p0 / 2.9e5;
   cip::GasMaterials mat;
   mat.air = cip::EquationOfState::ideal(1.4);
   std::vector<std::array<int, 2>> ends;
@@ -73,6 +74,47 @@ TEST_CASE("C9 crack flow: the front in a rigid crack follows the similarity solu
                   k.regime, k.w, k.f, k.t, kappa, x_ref, a, b, 100 * (a / x_ref - 1), 100 * (b / x_ref - 1));
       CHECK(std::fabs(a / x_ref - 1) < 0.10);
       CHECK(std::fabs(b / x_ref - 1) < 0.10);
+    }
+  }
+}
+
+TEST_CASE("C9 at thin sources (an open defect, expected to fail): the fronts from reservoirs of 1 and 5 kg/m3 against "
+          "the similarity solution with C9's bound", "[long][ibm][crack][C9][!shouldfail]") {
+  // The channel solver treats densities below kCrackVacuumDensity (1e-2 kg/m3) as vacuum. C9's reservoir holds
+  // 34.5 kg/m3; the gas of a decoupled charge or of a hole late in a blast holds a few kg/m3, so the thin edge
+  // of its front lies nearer the threshold. The same channels and bound as C9 (10 %), with the reservoir at
+  // 1 and 5 kg/m3 (p0 = rho0 Theta0, Theta0 = 2.9e5 J/kg): the similarity solution at that p0 is the reference.
+  // Measured 2026-12-07: laminar within 5 %, but the turbulent isobars at 1 kg/m3 run 8-39 % ahead and farther
+  // ahead on the finer channel, and at 5 kg/m3 the 0.25 p0 isobar 10.4-11.5 % ahead on the finer channel: the
+  // threshold is not right for thin sources (docs/coupling.md "vacuum"). Catch2's [!shouldfail]: this case
+  // passes while any check fails, and fails once every check holds, so that the fix removes the tag.
+  using test::FrictionSimilarity;
+  const double th0 = 2.9e5, mu = 5e-5;
+  struct Case {
+    const char* regime;
+    double w, f, t;
+  };
+  for (double rho0 : {1.0, 5.0}) {
+    const double p0 = rho0 * th0;
+    for (const Case& k : {Case{"laminar", 30e-6, 0.0, 1e-3}, Case{"turbulent", 0.5e-3, 0.1, 2e-3},
+                          Case{"turbulent", 2e-3, 0.5, 2e-3}}) {
+      const bool lam = k.regime[0] == 'l';
+      const FrictionSimilarity ref(lam ? FrictionSimilarity::Regime::laminar : FrictionSimilarity::Regime::turbulent,
+                                   lam ? k.w * k.w / (12 * mu) : 4 * k.w / k.f, p0, th0, 1.4);
+      ibm::CrackGasOptions opt;
+      opt.friction_factor = k.f;
+      opt.viscosity = lam ? mu : 0.0;
+      for (double kappa : {0.5, 0.25}) {
+        const double x_ref = ref.isobar(kappa) * std::pow(k.t, ref.exponent());
+        const double len = 2.5 * x_ref / 0.8;
+        const double a = channel_isobar(100, len / 100, k.w, opt, k.t, kappa, p0),
+                     b = channel_isobar(200, len / 200, k.w, opt, k.t, kappa, p0);
+        std::printf("C9 thin source rho0 %.0f kg/m3, %s w %.1e m f %.2f t %.1e s, p = %.2f p0: similarity %.4f m, channel "
+                    "%.4f m (100 segments) %.4f m (200): %+.2f %% %+.2f %% (bound 10 %%)\n",
+                    rho0, k.regime, k.w, k.f, k.t, kappa, x_ref, a, b, 100 * (a / x_ref - 1), 100 * (b / x_ref - 1));
+        CHECK(std::fabs(a / x_ref - 1) < 0.10);
+        CHECK(std::fabs(b / x_ref - 1) < 0.10);
+      }
     }
   }
 }
