@@ -39,10 +39,11 @@ void fill_ghosts(const GasStateView& s, const GasGrid& grid, const BoundaryConte
   for_each_index("cip.ghosts.outflow_faces", 2 * static_cast<index_t>(grid.nx + grid.ny),
                  detail::FillOutflowFaces{s, grid, ctx});
   // x pass over the logical rows [0, ny] (cells 0..ny-1 and y-faces 0..ny).
-  for_each_cell("cip.ghosts.x", 0, 2 * g + 2, 0, grid.ny + 1, detail::FillGhostsX{s, grid, ctx});
+  for_each_cell("cip.ghosts.x", 0, 2 * g + 2, 0, grid.ny + 1,
+                detail::FillGhosts<0>{s, grid.nx, bc.kind(left), bc.kind(right)});
   // y pass over every column of the padded array.
   for_each_cell("cip.ghosts.y", -g, grid.nx + 1 + g, 0, 2 * g + 2,
-                detail::FillGhostsY{s, grid.ny, bc.kind(bottom), bc.kind(top)});
+                detail::FillGhosts<1>{s, grid.ny, bc.kind(bottom), bc.kind(top)});
 }
 
 }  // namespace blastsim::cip

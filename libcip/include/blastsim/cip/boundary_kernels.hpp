@@ -93,23 +93,6 @@ BLAST_HD inline void set_outflow_face(const CipFieldView& F, const GasStateView&
   }
 }
 
-struct FillGhostsX {
-  GasStateView s;
-  GasGrid grid;
-  BoundaryContext ctx;
-  BLAST_HD void operator()(int c, int t) const {
-    const int g = GasGrid::ghost, nx = grid.nx;
-    const int k = c < g + 1 ? c - g : nx + (c - g - 1);  // c in [0, 2g + 2)
-    const BoundaryKind kind = kind_of(ctx.bc, k <= 0 ? left : right);
-    if (is_ghost(k, nx, false, kind)) {
-      fill_one(s.rho, 0, k, t, nx, false, kind, 1.0);
-      fill_one(s.e, 0, k, t, nx, false, kind, 1.0);
-      fill_one(s.v, 0, k, t, nx, false, kind, 1.0);
-    }
-    if (is_ghost(k, nx, true, kind)) fill_one(s.u, 0, k, t, nx, true, kind, -1.0);
-  }
-};
-
 //! The outflow boundary faces go first: the ghost faces beyond them copy them.
 struct FillOutflowFaces {
   GasStateView s;
@@ -128,21 +111,32 @@ struct FillOutflowFaces {
   }
 };
 
-//! Same along y for every column (x ghosts included), so corners follow from the x pass.
-struct FillGhostsY {
+//! The ghosts of the state along Axis (0: x, over the logical rows, first; 1: y, over every padded column, so
+//! that the corners follow from the x pass): `a` and `b` are (ghost index c, row t) along x and (column t, ghost
+//! index c) along y, c in [0, 2 g + 2). The normal velocity (u along x, v along y) is face-centred and mirrored at
+//! a wall; the density, the energy and the tangential velocity are cell-centred. Axis is a template parameter: a
+//! run-time choice between the velocity fields would put the kernel's argument in local memory on the GPU
+//! (docs/performance-gpu.md, "Local memory in the GPU kernels").
+template <int Axis>
+struct FillGhosts {
   GasStateView s;
-  int ny;
-  BoundaryKind lo, hi;
-  BLAST_HD void operator()(int t, int c) const {
+  int n;                // cells along the axis
+  BoundaryKind lo, hi;  // the boundaries at its low and high ends
+  BLAST_HD void operator()(int a, int b) const {
     const int g = GasGrid::ghost;
-    const int k = c < g + 1 ? c - g : ny + (c - g - 1);
+    const int c = Axis == 0 ? a : b, t = Axis == 0 ? b : a;
+    const int k = c < g + 1 ? c - g : n + (c - g - 1);
     const BoundaryKind kind = k <= 0 ? lo : hi;
-    if (is_ghost(k, ny, false, kind)) {
-      fill_one(s.rho, 1, k, t, ny, false, kind, 1.0);
-      fill_one(s.e, 1, k, t, ny, false, kind, 1.0);
-      fill_one(s.u, 1, k, t, ny, false, kind, 1.0);
+    if (is_ghost(k, n, false, kind)) {
+      fill_one(s.rho, Axis, k, t, n, false, kind, 1.0);
+      fill_one(s.e, Axis, k, t, n, false, kind, 1.0);
+      if constexpr (Axis == 0) fill_one(s.v, Axis, k, t, n, false, kind, 1.0);
+      else fill_one(s.u, Axis, k, t, n, false, kind, 1.0);
     }
-    if (is_ghost(k, ny, true, kind)) fill_one(s.v, 1, k, t, ny, true, kind, -1.0);
+    if (is_ghost(k, n, true, kind)) {
+      if constexpr (Axis == 0) fill_one(s.u, Axis, k, t, n, true, kind, -1.0);
+      else fill_one(s.v, Axis, k, t, n, true, kind, -1.0);
+    }
   }
 };
 
