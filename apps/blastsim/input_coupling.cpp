@@ -27,6 +27,7 @@ void read_coupling(TableReader& root, Case& c) {
   o.courant = crack.number("courant", "", Range{ibm::CrackGasOptions::kMinCourant, 1.0, false, false}, o.courant);
   o.second_order = crack.boolean("second_order", o.second_order);
   o.handover_width = crack.number("handover_width", "cells", Range{1.0, 1e6, false, false}, o.handover_width);
+  o.vacuum_fraction = crack.number("vacuum_fraction", "", Range{0.0, 1.0, false, true}, o.vacuum_fraction);
   crack.finish();
   // An initial aperture is the crack gas's room; the rock's faces touch, so the grid has no gap there, and an
   // aperture as wide as the hand-over gap (where a crack's gas becomes the grid's) would need one.

@@ -27,6 +27,7 @@ void CrackGasOptions::validate() const {
   if (!(courant >= kMinCourant && courant <= 1)) bad("courant", courant, "must be in [0.01, 1]");
   if (!(handover_width >= 1) || !std::isfinite(handover_width))
     bad("handover_width", handover_width, "must be >= 1 [cells]");
+  if (!(vacuum_fraction >= 0 && vacuum_fraction < 1)) bad("vacuum_fraction", vacuum_fraction, "must be in [0, 1)");
 }
 
 namespace detail {
@@ -136,7 +137,14 @@ CrackMouths<Access::read> CrackGas::mouths() const { return a_->mouths.read(); }
 CrackDeposits<Access::read> CrackGas::deposit_view() const { return a_->deposits.read(); }
 
 void CrackGas::update_primitives() {
-  for_each_index("crack.primitive", segments_, SegmentPrimitiveKernel{mat_, a_->segments.view()});
+  for_each_index("crack.primitive", segments_, SegmentPrimitiveKernel{mat_, a_->segments.view(), vacuum_density_});
+}
+
+void CrackGas::update_vacuum_density() {
+  const double segment = reduce_max("crack.densest", segments_, 0.0,
+                                    GasSegmentValue{a_->segments.read(), GasSegmentValue::density, 0.0});
+  const double mouth = reduce_max("crack.densest_mouth", junctions_, 0.0, MouthDensityOf{a_->mouths.read()});
+  vacuum_density_ = options_.vacuum_fraction * std::max(segment, mouth);
 }
 
 double CrackGas::stable_dt() const {
@@ -162,18 +170,20 @@ void CrackGas::step_from_primitives(double dt, double interval) {
   const CrackGeometry<Access::read> geo = a.geometry.read();
   const CrackMouths<Access::read> mouths = a.mouths.read();
   for_each_index("crack.faces", segments_,
-                 FaceStateKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.view(), options_.second_order, dt});
+                 FaceStateKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.view(), options_.second_order,
+                                 vacuum_density_, dt});
   for_each_index("crack.junctions", junctions_,
                  JunctionFluxKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.read(), a.end_fluxes.view(),
                                     a.deposits.view(), dt, interval});
   for_each_index("crack.update", segments_,
                  SegmentUpdateKernel{geo, a.segments.view(), a.end_fluxes.read(),
-                                     options_.flow(), dt});
+                                     options_.flow(), vacuum_density_, dt});
 }
 
 int CrackGas::advance(double dt, double interval) {
   if (!(dt > 0)) return 0;
   if (!(interval >= dt)) throw std::invalid_argument("CrackGas::advance: the interval must be at least dt");
+  update_vacuum_density();
   update_primitives();
   const double limit = stable_dt();
   if (!(limit > 0))
@@ -253,6 +263,7 @@ void CrackGas::clear_deposits() {
 //! The checkpoint holds the segments' state and geometry (the graph comes from the mesh; the ends and the
 //! mouths are recomputed every step).
 void CrackGas::write_checkpoint(CheckpointWriter& w) const {
+  w.value("crack.vacuum_density", vacuum_density_);
   a_->segments.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.") + name, v); });
   a_->geometry.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.") + name, v); });
 }
@@ -264,6 +275,8 @@ void CrackGas::check_kinds(const CheckpointReader& r) const {
 
 void CrackGas::read_checkpoint(CheckpointReader& r) {
   const auto n = static_cast<std::size_t>(segments_);
+  vacuum_density_ = r.value<double>("crack.vacuum_density");
+  if (!(vacuum_density_ >= 0) || !std::isfinite(vacuum_density_)) r.fail("crack.vacuum_density", "not a density >= 0");
   a_->segments.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   a_->geometry.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   check_kinds(r);

@@ -124,7 +124,8 @@ void CrackGasCoupling::update_geometry(CouplingContext& ctx) {
                  CrackGeometryKernel{ctx.rock.view(), ctx.gas.materials(), a_->params.view(), crack_->geometry(),
                                      crack_->segments(), a_->handovers.view(), a_->cushion.view(), a_->walls.view(),
                                      crack_->options().residual_aperture,
-                                     handover_gaps(ctx.gas.grid()), 0.5 * ctx.rock.last_step()});
+                                     handover_gaps(ctx.gas.grid()), 0.5 * ctx.rock.last_step(),
+                                     crack_->vacuum_density()});
 }
 
 void CrackGasCoupling::sort_records(int records, int mouth_records) {
@@ -142,7 +143,7 @@ void CrackGasCoupling::after_gas(CouplingContext& ctx, double dt) {
   for_each_index("ibm.crack.mouths", crack_->junction_count(),
                  CrackMouthKernel{ctx.rock.view(), ctx.gas.materials(), g, ctx.gas.immersed_boundary().cell_active,
                                   ctx.gas.cells(), crack_->graph(), crack_->segments(), a_->places.view(),
-                                  crack_->mouths(), a_->mouth_cells.view()});
+                                  crack_->mouths(), a_->mouth_cells.view(), crack_->vacuum_density()});
   sort_records(records, mouth_records);
   for_each_index("ibm.crack.mouth_sharers", records,
                  MouthSharersKernel{a_->order.read(), a_->mouth_cells.view(), mouth_records, records});

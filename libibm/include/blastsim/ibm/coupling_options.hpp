@@ -65,12 +65,24 @@ struct CrackGasOptions {
   //! cells, not of its step, at any Courant number below 1).
   static constexpr double kMinCourant = 0.01;
   bool second_order = true;         //!< MUSCL-Hancock along straight chains (first order otherwise)
+  //! [-] A segment whose density is below this fraction of the densest gas the network touches (its mouths'
+  //! reservoirs and its own segments, at the start of each advance) is vacuum to the channel solver (a freshly
+  //! broken joint starts empty): the thin edge of gas expanding into an empty crack carries no pressure and sends
+  //! no flux until more gas arrives. Counted as gas, it runs ahead of the rarefaction at u + 2 c / Gamma, its
+  //! motion turns into heat at the walls (the laminar friction 12 mu / (rho w^2) grows without bound as rho
+  //! falls), and a wisp of it at millions of kelvin sets the channel's substeps. Relative, not absolute: with
+  //! fully rough walls the channel flow has no density scale of its own (rho, p and the fluxes scale together; u
+  //! and c stay), so a fixed threshold put the fronts of thin sources ahead (docs/coupling.md "vacuum").
+  double vacuum_fraction = kDefaultVacuumFraction;
+  //! The ratio of the earlier fixed threshold (1e-2 kg/m3) to the 34.5 kg/m3 reservoir of C9, the case it was
+  //! measured on (docs/validation-coupling.md C9).
+  static constexpr double kDefaultVacuumFraction = 3e-4;
   //! [cells] a crack whose faces are this many grid cells apart is the grid's (its gas handed to the cells it
   //! opens); narrower ones carry their own gas and are solid to the grid (docs/coupling.md "Hand-over")
   double handover_width = kDefaultHandoverWidth;
   static constexpr double kDefaultHandoverWidth = 2.0;
   //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0, roughness > 0,
-  //! viscosity >= 0, kMinCourant <= courant <= 1 and handover_width >= 1 (all finite).
+  //! viscosity >= 0, kMinCourant <= courant <= 1, handover_width >= 1 and 0 <= vacuum_fraction < 1 (all finite).
   void validate() const;
   //! The kernels' flow parameters: a constant friction factor, or Louis's law with the roughness.
   ChannelFlowParams flow() const {

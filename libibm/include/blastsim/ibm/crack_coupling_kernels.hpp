@@ -202,7 +202,8 @@ struct CrackGeometryKernel {
   CrackWallLedger<Access::read_write> ledger;
   double residual_aperture;
   HandoverGaps gaps;
-  double lag;  //!< [s] half the rock's last step (joint_faces())
+  double lag;             //!< [s] half the rock's last step (joint_faces())
+  double vacuum_density;  //!< [kg/m3] CrackGas::vacuum_density()
   BLAST_HD void operator()(index_t ji) const {
     const int s = static_cast<int>(ji);
     if (!rock.joints.broken[s]) {
@@ -224,7 +225,7 @@ struct CrackGeometryKernel {
     if (kind != kSegmentGas) return;
     ChannelConserved c = seg.cons[s];
     const double V_old = seg.volume[s];
-    const ChannelPrimitive P = segment_state(mat, c, V_old);
+    const ChannelPrimitive P = segment_state(mat, c, V_old, vacuum_density);
     if (loaded && !is_vacuum(P)) {  // the work of the cushion's load over the last rock substep
       const double W_rock = cushion.applied[s] * swept_area(cushion.faces[s], f);
       const double W = expansion_work(c, W_rock, P.p, V_old, V);
@@ -318,6 +319,7 @@ struct CrackMouthKernel {
   CrackJunctionPlaces places;
   CrackMouths<Access::read_write> mouths;
   CrackMouthCells<Access::read_write> mouth_cells;
+  double vacuum_density;  //!< [kg/m3] CrackGas::vacuum_density()
   BLAST_HD void operator()(index_t ji) const {
     const int J = static_cast<int>(ji);
     mouths.open[J] = 0;
@@ -355,7 +357,8 @@ struct CrackMouthKernel {
     }
     if (found == 0) return;
     mouths.open[J] = 1;
-    mouths.reservoir[J] = channel_state(mat, mass / found, 0.0, energy / mass, products / mass, alpha_mass / mass);
+    mouths.reservoir[J] =
+        channel_state(mat, mass / found, 0.0, energy / mass, products / mass, alpha_mass / mass, vacuum_density);
     // Each sample's share of what the mouth moves: of each quantity in proportion to its cell's own content of
     // it (a quantity none of them holds, in proportion to mass). So a draw takes the same fraction of every
     // sample cell's mass, internal energy and fractions, a cold cell does not pay for a hot neighbour's enthalpy,

@@ -85,6 +85,10 @@ class CrackGas {
   std::string describe_invalid_segment() const;
   //! Recomputes the segments' primitive states (pressures for the faces' loads) from their gas.
   void update_primitives();
+  //! [kg/m3] the density at or below which a segment is vacuum: options().vacuum_fraction times the densest gas
+  //! the network touched (open mouths' reservoirs and gas segments) at the start of the last advance(); 0 before
+  //! the first. In the checkpoint, so that a restart sees the same states.
+  double vacuum_density() const { return vacuum_density_; }
 
   // --- device views (the coupling's kernels: crack_coupling_kernels.hpp) ---
   CrackGraph graph() const;
@@ -120,7 +124,9 @@ class CrackGas {
   //! step() once the primitives are current: a substep of dt within an advance() of `interval` [s]
   void step_from_primitives(double dt, double interval);
   void check_kinds(const CheckpointReader& r) const;  //!< every restored kind is a CrackSegmentKind
+  void update_vacuum_density();                        //!< from the reservoirs and segments as they stand
   int segments_ = 0, junctions_ = 0;
+  double vacuum_density_ = 0.0;
   cip::GasMaterials mat_;
   CrackGasOptions options_;
   std::unique_ptr<detail::CrackArrays> a_;

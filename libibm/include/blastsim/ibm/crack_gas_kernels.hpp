@@ -23,13 +23,6 @@
 
 namespace blastsim::ibm {
 
-//! Densities below this [kg/m3] are vacuum to the channel solver (a freshly broken joint starts empty): the
-//! thin edge of gas expanding into an empty crack carries no pressure and sends no flux until more gas arrives.
-//! Counted as gas, it runs ahead of the rarefaction at u + 2 c / Gamma, its motion turns into heat at the walls
-//! (the laminar friction 12 mu / (rho w^2) grows without bound as rho falls), and a wisp of it at millions of
-//! kelvin would set the channel's substeps (with 1e-9 it did; 1e-2, a hundredth of air's density, keeps the
-//! fronts of C9 within a few per cent of the similarity solution with 20 to 40 times fewer substeps).
-inline constexpr double kCrackVacuumDensity = 1e-2;
 //! Most segments that may meet at one junction (the mesh's largest vertex degree is checked against it).
 inline constexpr int kCrackMaxDegree = 16;
 
@@ -66,24 +59,28 @@ struct ChannelFlux {
   double m, q, E, m1, am;
 };
 
-BLAST_HD inline bool is_vacuum(const ChannelPrimitive& s) { return !(s.rho > kCrackVacuumDensity); }
+//! A state marked empty: channel_state() gives a density at or below the vacuum density 0.
+BLAST_HD inline bool is_vacuum(const ChannelPrimitive& s) { return !(s.rho > 0.0); }
 
-//! Primitive state from density, velocity, specific internal energy and the products fractions.
+//! Primitive state from density, velocity, specific internal energy and the products fractions; vacuum (density
+//! 0) at or below `vacuum_density` [kg/m3] (CrackGas::vacuum_density()).
 BLAST_HD inline ChannelPrimitive channel_state(const cip::GasMaterials& mat, double rho, double u, double e, double Y,
-                                               double alpha) {
+                                               double alpha, double vacuum_density) {
   ChannelPrimitive s{rho, u, 0.0, 0.0, Y, alpha, 0.0};
-  if (is_vacuum(s)) return {0.0, 0.0, 0.0, 0.0, Y, alpha, 0.0};
+  if (!(rho > vacuum_density)) return {0.0, 0.0, 0.0, 0.0, Y, alpha, 0.0};
   s.p = mat.pressure(rho, e, alpha, Y * rho);
   s.c = mat.sound_speed(rho, e, alpha, Y * rho);
   s.Edens = rho * e + 0.5 * rho * u * u;
   return s;
 }
 
-//! Primitive state of a segment from its conserved variables and volume V [m2 per m].
-BLAST_HD inline ChannelPrimitive segment_state(const cip::GasMaterials& mat, const ChannelConserved& c, double V) {
-  if (!(c.m > kCrackVacuumDensity * V)) return {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+//! Primitive state of a segment from its conserved variables and volume V [m2 per m]; vacuum at or below
+//! `vacuum_density` [kg/m3].
+BLAST_HD inline ChannelPrimitive segment_state(const cip::GasMaterials& mat, const ChannelConserved& c, double V,
+                                               double vacuum_density) {
+  if (!(c.m > vacuum_density * V) || !(c.m > 0.0)) return {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   const double rho = c.m / V, u = c.q / c.m, e = c.E / c.m - 0.5 * u * u;
-  return channel_state(mat, rho, u, e, c.m1 / c.m, c.am / c.m);
+  return channel_state(mat, rho, u, e, c.m1 / c.m, c.am / c.m, vacuum_density);
 }
 
 //! The same state seen in a frame whose axis is reversed.
@@ -150,7 +147,7 @@ struct NozzleFlow {
   double G, p, u;
 };
 BLAST_HD inline NozzleFlow nozzle_flow(double rho0, double p0, double k, double pb) {
-  if (!(rho0 > kCrackVacuumDensity) || !(p0 > pb)) return {0.0, p0, 0.0};
+  if (!(rho0 > 0.0) || !(p0 > pb)) return {0.0, p0, 0.0};
   const double r_choke = pow(2.0 / (k + 1.0), k / (k - 1.0));
   const double r = fmax(pb / p0, r_choke);
   const double rho = rho0 * pow(r, 1.0 / k);
@@ -189,7 +186,7 @@ BLAST_HD inline double friction_rate(double rho, double u, double w, const Chann
   const RoughChannelFriction f =
       flow.friction_factor >= 0.0 ? RoughChannelFriction{flow.friction_factor, 1.0} : louis_friction(0.5 * flow.roughness / w);
   const double turbulent = f.turbulent * fabs(u) / (4.0 * w);
-  if (!(rho > kCrackVacuumDensity)) return turbulent;
+  if (!(rho > 0.0)) return turbulent;
   return fmax(turbulent, f.laminar_factor * 12.0 * flow.viscosity / (rho * w * w));
 }
 
@@ -201,9 +198,9 @@ BLAST_HD inline double minmod(double a, double b) {
 
 //! A state from density, velocity, pressure and the products fractions (the MUSCL-Hancock face values).
 BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat, double rho, double u, double p, double Y,
-                                                   double alpha) {
+                                                   double alpha, double vacuum_density) {
   const double rho_e = mat.internal_energy_density(rho, p, alpha, Y);
-  return channel_state(mat, rho, u, rho_e / rho, Y, alpha);
+  return channel_state(mat, rho, u, rho_e / rho, Y, alpha, vacuum_density);
 }
 
 // ---- the crack graph and its kernels (CrackGas runs them; docs/coupling.md "Gas in the cracks") ----------
@@ -251,9 +248,10 @@ BLASTSIM_VIEW_GROUP(CrackDeposits, BLASTSIM_CRACK_DEPOSITS)
 struct SegmentPrimitiveKernel {
   cip::GasMaterials mat;
   CrackSegments<Access::read_write> seg;  //!< writes prim
+  double vacuum_density;                  //!< [kg/m3] (CrackGas::vacuum_density())
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    seg.prim[s] = seg.kind[s] == kSegmentGas ? segment_state(mat, seg.cons[s], seg.volume[s])
+    seg.prim[s] = seg.kind[s] == kSegmentGas ? segment_state(mat, seg.cons[s], seg.volume[s], vacuum_density)
                                              : ChannelPrimitive{0, 0, 0, 0, 0, 0, 0};
   }
 };
@@ -287,6 +285,7 @@ struct FaceStateKernel {
   CrackMouths<Access::read> mouths;
   CrackEndStates<Access::read_write> ends;
   bool second_order;
+  double vacuum_density;  //!< [kg/m3] a reconstructed face state at or below it: first order
   double dt;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
@@ -314,11 +313,11 @@ struct FaceStateKernel {
     const double Yt = -P.u * Yx, at = -P.u * ax;
     const double r0 = P.rho - 0.5 * L * rx + h * rt, r1 = P.rho + 0.5 * L * rx + h * rt;
     const double p0 = P.p - 0.5 * L * px + h * pt, p1 = P.p + 0.5 * L * px + h * pt;
-    if (!(r0 > kCrackVacuumDensity && r1 > kCrackVacuumDensity && p0 > 0 && p1 > 0)) return;
+    if (!(r0 > vacuum_density && r1 > vacuum_density && p0 > 0 && p1 > 0)) return;
     ends.face[2 * s] = channel_state_rup(mat, r0, P.u - 0.5 * L * ux + h * ut, p0, P.Y - 0.5 * L * Yx + h * Yt,
-                                         P.alpha - 0.5 * L * ax + h * at);
+                                         P.alpha - 0.5 * L * ax + h * at, vacuum_density);
     ends.face[2 * s + 1] = channel_state_rup(mat, r1, P.u + 0.5 * L * ux + h * ut, p1, P.Y + 0.5 * L * Yx + h * Yt,
-                                             P.alpha + 0.5 * L * ax + h * at);
+                                             P.alpha + 0.5 * L * ax + h * at, vacuum_density);
   }
 };
 
@@ -433,6 +432,7 @@ struct SegmentUpdateKernel {
   CrackSegments<Access::read_write> seg;  //!< writes cons
   CrackEndFluxes<Access::read> ends;
   ChannelFlowParams flow;
+  double vacuum_density;  //!< [kg/m3] at or below it a segment holds no momentum
   double dt;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
@@ -445,7 +445,7 @@ struct SegmentUpdateKernel {
     c.am -= dt * (o0.am + o1.am);
     c.q -= dt * (o1.q - o0.q - seg.prim[s].p * (ends.end_area[2 * s + 1] - ends.end_area[2 * s]));
     const double V = seg.volume[s];
-    if (c.m > kCrackVacuumDensity * V) {
+    if (c.m > vacuum_density * V && c.m > 0.0) {
       const double k = friction_rate(c.m / V, c.q / c.m, geo.aperture[s], flow);
       c.q /= 1.0 + dt * k;
     } else {
@@ -508,7 +508,7 @@ struct MouthRateOf {
 //! What segment s holds when it holds gas, 0 otherwise (CrackGas::totals()): its mass, energy, products mass or
 //! volume, 1 (a count), 1 above the pressure `wet` (a count of wet segments), or its pressure.
 struct GasSegmentValue {
-  enum What { mass, energy, products_mass, volume, count, wet_count, pressure };
+  enum What { mass, energy, products_mass, volume, count, wet_count, pressure, density };
   CrackSegments<Access::read> seg;
   What what;
   double wet;  //!< [Pa] for wet_count
@@ -522,9 +522,16 @@ struct GasSegmentValue {
       case count: return 1.0;
       case wet_count: return seg.prim[s].p > wet ? 1.0 : 0.0;
       case pressure: return seg.prim[s].p;
+      case density: return seg.volume[s] > 0.0 ? seg.cons[s].m / seg.volume[s] : 0.0;
     }
     return 0.0;
   }
+};
+
+//! The density [kg/m3] of mouth J's reservoir when it is open, 0 otherwise (CrackGas::vacuum_density()).
+struct MouthDensityOf {
+  CrackMouths<Access::read> mouths;
+  BLAST_HD double operator()(index_t J) const { return mouths.open[J] ? mouths.reservoir[J].rho : 0.0; }
 };
 
 }  // namespace blastsim::ibm
