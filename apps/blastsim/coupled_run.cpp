@@ -451,8 +451,13 @@ std::string crack_gas_line(const ibm::CrackGasOptions& o, const ibm::CrackGasCou
       o.friction_factor ? fmt::format("friction factor {:.3g}", *o.friction_factor)
                         : fmt::format("Louis's friction of the roughness {:.3g} m (f = {:.3g} at an aperture of 10 x it)",
                                       f.roughness, ibm::louis_friction(0.05).turbulent);
-  return fmt::format("crack gas on (residual aperture {:.3g} m, {}, hand-over to the grid at {:.3g} m wide, {} junctions)",
-                     o.residual_aperture, friction, gaps.handover, crack.crack_gas().junction_count());
+  const ibm::CrackGasOptions& acting = crack.crack_gas().options();  // with the walls' temperature the coupler set
+  const std::string walls =
+      acting.walls == ibm::WallHeat::adiabatic
+          ? std::string("adiabatic walls")
+          : fmt::format("{} walls at p / rho = {:.4g} J/kg", ibm::wall_heat_name(acting.walls), acting.wall_theta.value_or(0.0));
+  return fmt::format("crack gas on (residual aperture {:.3g} m, {}, {}, hand-over to the grid at {:.3g} m wide, {} junctions)",
+                     o.residual_aperture, friction, walls, gaps.handover, crack.crack_gas().junction_count());
 }
 
 }  // namespace

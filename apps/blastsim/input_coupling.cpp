@@ -24,6 +24,10 @@ void read_coupling(TableReader& root, Case& c) {
   o.friction_factor = crack.optional_number("friction_factor", "", Range::non_negative());
   o.roughness = crack.optional_number("roughness", "m", Range::positive());
   o.viscosity = crack.number("viscosity", "Pa s", Range::non_negative(), o.viscosity);
+  const std::string walls = crack.text("walls", {"exchange", "adiabatic", "isothermal"}, std::string("exchange"));
+  o.walls = walls == "adiabatic" ? ibm::WallHeat::adiabatic
+                                 : (walls == "isothermal" ? ibm::WallHeat::isothermal : ibm::WallHeat::exchange);
+  o.prandtl = crack.number("prandtl", "", Range::positive(), o.prandtl);
   o.courant = crack.number("courant", "", Range{ibm::CrackGasOptions::kMinCourant, 1.0, false, false}, o.courant);
   o.second_order = crack.boolean("second_order", o.second_order);
   o.handover_width = crack.number("handover_width", "cells", Range{1.0, 1e6, false, false}, o.handover_width);

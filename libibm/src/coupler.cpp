@@ -63,7 +63,9 @@ void GasRockCoupler::run(Stage stage, CouplingContext& ctx, const StageStep& ste
 }
 
 CrackGasCoupling& GasRockCoupler::enable_crack_gas(const CrackGasOptions& options) {
-  auto p = std::make_unique<CrackGasCoupling>(rock_, gas_.materials(), options);
+  CrackGasOptions o = options;
+  if (!o.wall_theta) o.wall_theta = ambient_pressure() / ambient_.density;  // the rock at the ambient air's temperature
+  auto p = std::make_unique<CrackGasCoupling>(rock_, gas_.materials(), o);
   crack_ = p.get();
   add(std::move(p));
   return *crack_;

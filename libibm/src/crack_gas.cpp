@@ -28,6 +28,26 @@ void CrackGasOptions::validate() const {
   if (!(handover_width >= 1) || !std::isfinite(handover_width))
     bad("handover_width", handover_width, "must be >= 1 [cells]");
   if (!(vacuum_fraction >= 0 && vacuum_fraction < 1)) bad("vacuum_fraction", vacuum_fraction, "must be in [0, 1)");
+  if (!(prandtl > 0) || !std::isfinite(prandtl)) bad("prandtl", prandtl, "must be > 0");
+  if (wall_theta && (!(*wall_theta > 0) || !std::isfinite(*wall_theta)))
+    bad("wall_theta", *wall_theta, "must be > 0 [J/kg]");
+  if (walls != WallHeat::adiabatic && !wall_theta)
+    throw InputError(std::string("crack gas: walls = ") + wall_heat_name(walls) +
+                     " needs the walls' temperature (wall_theta = R T_wall [J/kg]; a coupled run sets the ambient air's)");
+}
+
+const char* wall_heat_name(WallHeat walls) {
+  switch (walls) {
+    case WallHeat::adiabatic: return "adiabatic";
+    case WallHeat::isothermal: return "isothermal";
+    case WallHeat::exchange: return "exchange";
+  }
+  return "?";
+}
+
+ChannelFlowParams CrackGasOptions::flow() const {
+  return {friction_factor.value_or(-1.0), roughness.value_or(residual_aperture), viscosity, walls,
+          wall_theta.value_or(0.0), prandtl, std::pow(prandtl, -2.0 / 3.0)};
 }
 
 namespace detail {
@@ -83,6 +103,7 @@ CrackGas::CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment
   a.segments.kind.assign(segments_, kSegmentNone);
   a.segments.cons.assign(segments_, ChannelConserved{0, 0, 0, 0, 0});
   a.segments.prim.assign(segments_, ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
+  a.segments.wall_heat.assign(segments_, 0.0);
   a.end_states.face.assign(2 * static_cast<std::size_t>(segments_), ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
   a.end_fluxes.out.assign(2 * static_cast<std::size_t>(segments_), ChannelFlux{0, 0, 0, 0, 0});
   a.end_fluxes.end_area.assign(2 * static_cast<std::size_t>(segments_), 0.0);
@@ -176,7 +197,7 @@ void CrackGas::step_from_primitives(double dt, double interval) {
                  JunctionFluxKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.read(), a.end_fluxes.view(),
                                     a.deposits.view(), dt, interval});
   for_each_index("crack.update", segments_,
-                 SegmentUpdateKernel{geo, a.segments.view(), a.end_fluxes.read(),
+                 SegmentUpdateKernel{mat_, geo, a.segments.view(), a.end_fluxes.read(),
                                      options_.flow(), vacuum_density_, dt});
 }
 
@@ -232,6 +253,7 @@ CrackGasTotals CrackGas::totals(double reference_pressure) const {
   t.gas_segments = std::lround(sum("crack.count", GasSegmentValue::count));
   t.wet_segments = std::lround(sum("crack.wet", GasSegmentValue::wet_count));
   t.max_pressure = reduce_max("crack.max_p", segments_, 0.0, GasSegmentValue{seg, GasSegmentValue::pressure, wet});
+  t.wall_heat = reduce_sum("crack.wall_heat", segments_, 0.0, WallHeatOf{seg});
   return t;
 }
 

@@ -110,7 +110,7 @@ void CrackGasCoupling::report(const CouplingDiagnostics& d, CsvRecord& o) const 
   o.integer("crack_gas_segments", d.crack.gas_segments).integer("crack_wet_segments", d.crack.wet_segments);
   o.real("crack_gas_pressure_max_Pa", d.crack.max_pressure, 6);
   o.real("crack_gas_to_grid_J_per_m", d.crack.to_grid_energy).real("crack_gas_wall_work_J_per_m", d.crack.wall_work);
-  o.real("crack_gas_unpaid_work_J_per_m", d.crack.unpaid_work);
+  o.real("crack_gas_unpaid_work_J_per_m", d.crack.unpaid_work).real("crack_gas_wall_heat_J_per_m", d.crack.wall_heat);
 }
 
 void CrackGasCoupling::cover(CouplingContext& ctx) {
@@ -214,7 +214,7 @@ void CrackGasCoupling::add_diagnostics(const CouplingContext& ctx, CouplingDiagn
   d.crack.wall_work = reduce_sum("ibm.crack.wall_work", crack_->segment_count(), 0.0, WallWorkOf{a_->walls.read(), false});
   d.crack.unpaid_work =
       reduce_sum("ibm.crack.unpaid_work", crack_->segment_count(), 0.0, WallWorkOf{a_->walls.read(), true});
-  d.energy_held += d.crack.energy;
+  d.energy_held += d.crack.energy + d.crack.wall_heat;  // the walls' heat went into the rock (not modelled there)
 }
 
 void CrackGasCoupling::write_checkpoint(CheckpointWriter& w) const {

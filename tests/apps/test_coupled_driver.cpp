@@ -388,8 +388,10 @@ TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy
                 "crack length %.3f m\n", tag, 1e6 * last.at("time_s"), work, residual, 100 * residual / work,
                 last.at("broken_joints"), last.at("crack_length_m"));
     CHECK(std::fabs(residual) < 0.05 * work);
-    // Cracks appear, and gas enters them: gas mass in the disc outside the hole region (r > 25 mm) grows
-    // well beyond the air that was there.
+    // Cracks appear, and gas enters them: gas mass in the disc outside the hole region (r > 25 mm), in the grid
+    // and (with crack gas) in the cracks' own gas, grows well beyond the air that was there. With crack gas most
+    // of it stays in the cracks: their walls cool it (docs/coupling.md "Heat at the walls"), and little reaches
+    // the grid's cells within 0.4 ms.
     const auto cs = csv_columns(out / "coupling_series.csv");
     const double annulus0 = cs.at("disc_mass_kg_per_m").front() - cs.at("hole_mass_kg_per_m").front();
     const double annulus1 = cs.at("disc_mass_kg_per_m").back() - cs.at("hole_mass_kg_per_m").back();
@@ -402,7 +404,7 @@ TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy
     std::printf("blast (%s): gas in the disc outside the hole %.3e -> %.3e kg/m; in the cracks %.3e kg/m\n", tag, annulus0,
                 annulus1, crack_mass);
     CHECK(last.at("broken_joints") > 10);
-    CHECK(annulus1 > 3 * annulus0);
+    CHECK(annulus1 + crack_mass > 3 * annulus0);
     if (crack_gas) CHECK(crack_mass > 0);
   }
 }

@@ -23,6 +23,13 @@ using Catch::Matchers::WithinAbs;
 
 namespace {
 
+//! Options of a channel whose walls exchange no heat (the references of these tests have none).
+CrackGasOptions adiabatic_walls() {
+  CrackGasOptions o;
+  o.walls = WallHeat::adiabatic;
+  return o;
+}
+
 cip::GasMaterials ideal_gas(double gamma) {
   cip::GasMaterials m;
   m.air = cip::EquationOfState::ideal(gamma);
@@ -54,6 +61,7 @@ double velocity_x(const CrackGas& c, int s, bool alternate) {
 double sod_l1(int n, bool alternate, bool second_order) {
   const cip::GasMaterials mat = ideal_gas(1.4);
   CrackGasOptions opt;
+  opt.walls = WallHeat::adiabatic;  // the reference has no heat at the walls
   opt.friction_factor = 0, opt.viscosity = 0, opt.courant = 0.9, opt.second_order = second_order;
   const double w = 1e-3, V = w / n;
   CrackGas c = straight_channel(n, 1.0, w, mat, opt, alternate);
@@ -126,6 +134,7 @@ FannoResult fanno_mass_flux(double rho0, double p0, double pb, double fld, doubl
 double channel_mass_flux(double rho0, double p0, double pb, double f, int n) {
   const cip::GasMaterials mat = ideal_gas(1.4);
   CrackGasOptions opt;
+  opt.walls = WallHeat::adiabatic;  // the reference has no heat at the walls
   opt.friction_factor = f, opt.viscosity = 0;
   const double L = 0.1, w = 0.5e-3, V = w * L / n;
   CrackGas c = straight_channel(n, L, w, mat, opt, false);
@@ -152,7 +161,7 @@ TEST_CASE("A crack segment whose gas is not finite stops the channel step, namin
   const int n = 8;
   const double w = 1e-3, V = w / n;
   for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity(), -1e-3}) {
-    CrackGas c = straight_channel(n, 1.0, w, mat, CrackGasOptions{}, false);
+    CrackGas c = straight_channel(n, 1.0, w, mat, adiabatic_walls(), false);
     std::vector<ChannelConserved> gas(n, at_rest(mat, 1.0, 1e5, V));
     gas[5].m = bad;  // a mass that is NaN, infinite or negative
     c.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), gas, std::vector<double>(n, V));
@@ -164,7 +173,7 @@ TEST_CASE("A crack segment whose gas is not finite stops the channel step, namin
       CHECK(std::string(e.what()).find("segment (joint) 5") != std::string::npos);
     }
   }
-  CrackGas ok = straight_channel(n, 1.0, w, mat, CrackGasOptions{}, false);  // the same channel, all valid
+  CrackGas ok = straight_channel(n, 1.0, w, mat, adiabatic_walls(), false);  // the same channel, all valid
   ok.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), std::vector<ChannelConserved>(n, at_rest(mat, 1.0, 1e5, V)),
              std::vector<double>(n, V));
   CHECK(ok.advance(1e-6) >= 1);
@@ -180,6 +189,7 @@ TEST_CASE("A step the channel would need more than kMaxSubsteps substeps for sto
   const int n = 8;
   const double w = 1e-3, V = w / n;
   CrackGasOptions opt;
+  opt.walls = WallHeat::adiabatic;  // the reference has no heat at the walls
   opt.courant = CrackGasOptions::kMinCourant;
   CrackGas c = straight_channel(n, 1.0, w, mat, opt, false);
   c.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), std::vector<ChannelConserved>(n, at_rest(mat, 1.0, 1e5, V)),
@@ -279,6 +289,7 @@ TEST_CASE("C3 crack channel: a closed branched network conserves mass and energy
   // high pressure in one arm and a vacuum in another.
   const cip::GasMaterials mat = ideal_gas(1.4);
   CrackGasOptions opt;
+  opt.walls = WallHeat::adiabatic;  // the reference has no heat at the walls
   const int arm = 10, n = 4 * arm;
   std::vector<std::array<int, 2>> ends;
   for (int a = 0; a < 4; ++a)
@@ -309,4 +320,52 @@ TEST_CASE("C3 crack channel: a closed branched network conserves mass and energy
   std::printf("C3 the vacuum arm holds gas in its first %d of %d segments (density at its end %.3e kg/m3)\n", front + 1,
               arm, end_gas[4 * arm - 1].m / V[4 * arm - 1]);
   CHECK(front >= arm / 2);
+}
+
+TEST_CASE("C11 crack walls: a hot gas at rest in a closed channel cools towards the walls' temperature at the rate of "
+          "the laminar Nusselt number, and every joule it gives is booked",
+          "[ibm][crack][C11]") {
+  // Four segments of 10 mm, aperture 1 mm, closed ends, ideal gas (gamma 1.4) at rest at rho 1 kg/m3 and
+  // Theta = p / rho = 5e5 J/kg; walls at Theta_w = 1e5 J/kg, no rough-wall friction. At rest only the laminar
+  // exchange acts: e - e_w = (e0 - e_w) exp(-k t), k = Nu gamma mu / (Pr rho w^2) (Nu = 7.541, parallel plates at
+  // one temperature; docs/coupling.md "Heat at the walls"), about 744 / s. The implicit update over substeps of
+  // at most 1 us departs from the exponential by about k^2 dt t / 2 = 6e-4 at 2 ms: bound 2e-3 on (e - e_w).
+  // Mass is kept exactly, energy + booked heat to 1e-12, and the gas stays at rest.
+  const cip::GasMaterials mat = ideal_gas(1.4);
+  const int n = 4;
+  const double w = 1e-3, L = 0.04, V = w * L / n, rho = 1.0, th0 = 5e5, thw = 1e5;
+  CrackGasOptions opt;
+  opt.friction_factor = 0.0, opt.walls = WallHeat::exchange, opt.wall_theta = thw;
+  const double rate = kParallelPlateNusselt * 1.4 * opt.viscosity / (opt.prandtl * rho * w * w);
+  CrackGas c = straight_channel(n, L, w, mat, opt, true);
+  const std::vector<ChannelConserved> gas0(n, at_rest(mat, rho, rho * th0, V));
+  c.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), gas0, std::vector<double>(n, V));
+  const CrackGasTotals t0 = c.totals();
+  const double t_end = 2e-3, dt = 1e-6;
+  for (int k = 0; k < 2000; ++k) c.advance(dt);
+  const CrackGasTotals t1 = c.totals();
+  const double e0 = th0 / 0.4, ew = thw / 0.4;
+  const double expected = std::exp(-rate * t_end);
+  double worst = 0.0, speed = 0.0;
+  for (const ChannelConserved& g : c.gas()) {
+    worst = std::max(worst, std::fabs((g.E / g.m - ew) / (e0 - ew) / expected - 1));
+    speed = std::max(speed, std::fabs(g.q / g.m));
+  }
+  std::printf("C11 cooling: rate %.4g 1/s; (e - e_w) / (e0 - e_w) at 2 ms %.6f, exp(-k t) %.6f, worst relative "
+              "difference %.2e (bound 2e-3); mass %.1e, energy + heat %.1e relative; largest speed %.1e m/s\n",
+              rate, (c.gas()[0].E / c.gas()[0].m - ew) / (e0 - ew), expected, worst, t1.mass / t0.mass - 1,
+              (t1.energy + t1.wall_heat) / t0.energy - 1, speed);
+  CHECK(worst < 2e-3);
+  CHECK(t1.mass == t0.mass);
+  CHECK(std::fabs((t1.energy + t1.wall_heat) / t0.energy - 1) < 1e-12);
+  CHECK(speed < 1e-9);
+  // Isothermal walls: one step leaves the gas at the walls' temperature, p / rho = Theta_w.
+  opt.walls = WallHeat::isothermal;
+  CrackGas iso = straight_channel(n, L, w, mat, opt, false);
+  iso.set_gas(std::vector<std::uint8_t>(n, kSegmentGas), gas0, std::vector<double>(n, V));
+  iso.advance(dt);
+  for (const ChannelPrimitive& p : iso.primitives()) CHECK_THAT(p.p / p.rho, WithinAbs(thw, 1e-9 * thw));
+  // A CrackGas alone with heat at its walls needs their temperature.
+  opt.wall_theta.reset();
+  CHECK_THROWS_WITH(opt.validate(), Catch::Contains("wall_theta"));
 }

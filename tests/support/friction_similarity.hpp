@@ -1,8 +1,8 @@
 //! \file friction_similarity.hpp
 //! \brief The similarity solution of an ideal gas filling an empty channel with walls of friction from a
 //! reservoir at constant pressure (docs/validation.md C9, derived in docs/coupling.md "Front in a rigid crack"):
-//! friction-dominated flow (inertia and kinetic energy neglected), adiabatic walls, laminar (cubic law) or fully
-//! rough turbulent (constant Darcy factor) friction; solved by shooting on the mouth's mass flux.
+//! friction-dominated flow (inertia and kinetic energy neglected), adiabatic or isothermal walls, laminar (cubic
+//! law) or fully rough turbulent (constant Darcy factor) friction; solved by shooting on the mouth's mass flux.
 #pragma once
 
 #include <cmath>
@@ -13,7 +13,9 @@ namespace blastsim::test {
 //! The 1-D problem: pressure p(x, t), Theta = p / rho, mass flux G along a channel of aperture w [m] from a
 //! reservoir at p0 [Pa], Theta0 [J/kg] (Theta = R T) into vacuum, with
 //!   mass      d(p / Theta)/dt + dG/dx = 0,
-//!   energy    dp/dt + gamma d(G Theta)/dx = 0          (total enthalpy flux G gamma Theta / (gamma - 1)),
+//!   energy    dp/dt + gamma d(G Theta)/dx = 0          (adiabatic walls: total enthalpy flux G gamma Theta /
+//!                                                      (gamma - 1)), or Theta = Theta0 (isothermal walls at
+//!                                                      the reservoir's temperature),
 //!   momentum  G = -K (p / Theta) dp/dx                  (laminar: K = w^2 / (12 mu)),
 //!             G |G| = -K (p / Theta) dp/dx              (turbulent: K = 4 w / f).
 //! With xi = x / t^a (a = 1/2 laminar, 2/3 turbulent) and G = t^(a - 1) g(xi) they become ordinary equations in
@@ -23,8 +25,10 @@ namespace blastsim::test {
 class FrictionSimilarity {
  public:
   enum class Regime { laminar, turbulent };
-  FrictionSimilarity(Regime regime, double K, double p0, double theta0, double gamma)
-      : turbulent_(regime == Regime::turbulent), a_(turbulent_ ? 2.0 / 3.0 : 0.5), K_(K), p0_(p0), th0_(theta0), gamma_(gamma) {
+  enum class Walls { adiabatic, isothermal };
+  FrictionSimilarity(Regime regime, double K, double p0, double theta0, double gamma, Walls walls = Walls::adiabatic)
+      : turbulent_(regime == Regime::turbulent), isothermal_(walls == Walls::isothermal), a_(turbulent_ ? 2.0 / 3.0 : 0.5),
+        K_(K), p0_(p0), th0_(theta0), gamma_(gamma) {
     // Scales: xi ~ sqrt(K p0) (laminar), (K Theta0)^(1/3) (turbulent); g from the momentum law over that length.
     const double xi = turbulent_ ? std::cbrt(K * theta0) : std::sqrt(K * p0);
     step_ = 5e-5 * xi;
@@ -53,7 +57,7 @@ class FrictionSimilarity {
     const double flux = turbulent_ ? s.g * std::fabs(s.g) : s.g;
     const double Pp = -flux * s.T / (K_ * s.P);
     const double D = s.g - a_ * xi * s.P / s.T;
-    const double Tp = a_ * xi * Pp * (1.0 - gamma_) / (gamma_ * D);
+    const double Tp = isothermal_ ? 0.0 : a_ * xi * Pp * (1.0 - gamma_) / (gamma_ * D);
     return {Pp, Tp, a_ * xi * (Pp / s.T - s.P * Tp / (s.T * s.T))};
   }
   //! Integrates from the mouth with g(0) = g0 (RK4). With kappa < 0: -1 when P reaches 0 first (too much flux),
@@ -76,7 +80,7 @@ class FrictionSimilarity {
     }
     return kappa >= 0 ? -1.0 : 1.0;
   }
-  bool turbulent_;
+  bool turbulent_, isothermal_;
   double a_, K_, p0_, th0_, gamma_, step_ = 0, g0_ = 0;
 };
 

@@ -57,7 +57,8 @@ class GasRockCoupler {
   ~GasRockCoupler();
 
   // --- processes (add before the first step and before read_checkpoint()) ---
-  //! Gives every broken joint its own gas (CrackGasCoupling; docs/coupling.md "Gas in the cracks").
+  //! Gives every broken joint its own gas (CrackGasCoupling; docs/coupling.md "Gas in the cracks"); walls at the
+  //! ambient air's temperature unless options.wall_theta says otherwise.
   CrackGasCoupling& enable_crack_gas(const CrackGasOptions& options);
   //! Places explosive charges in the gas (Charges; docs/coupling.md "Charges").
   Charges& set_charges(const std::vector<Charge>& charges, const ChargeProducts& products);

@@ -43,11 +43,24 @@ inline double recommended_courant(cip::Transport t, GasLoad load) {
   return load == GasLoad::edge_pressures ? cip::kPaperCourant : cip::recommended_courant(t);
 }
 
+//! How the crack walls exchange heat with the gas in the cracks (docs/coupling.md "Heat at the walls").
+enum class WallHeat {
+  adiabatic,   //!< no heat crosses the walls: friction heats the gas
+  isothermal,  //!< the gas takes the walls' temperature at once
+  exchange,    //!< a heat flux by the Chilton-Colburn analogy (turbulent) or the laminar Nusselt number
+};
+//! "adiabatic", "isothermal" or "exchange" (the driver's `crack_gas.walls`).
+const char* wall_heat_name(WallHeat walls);
+
 //! The physical parameters of the channel flow (CrackGasOptions' kernel part).
 struct ChannelFlowParams {
   double friction_factor;  //!< a constant rough-wall Darcy factor [-], or < 0: Louis's law of the roughness
   double roughness;        //!< asperity height k [m] of Louis's law
   double viscosity;        //!< [Pa s], laminar floor of the friction
+  WallHeat walls;          //!< the walls' heat model
+  double wall_theta;       //!< [J/kg] p / rho of a gas at the walls' temperature (R T_wall)
+  double prandtl;          //!< the gas's Prandtl number [-]
+  double colburn;          //!< Pr^(-2/3) [-] (the Chilton-Colburn factor)
 };
 
 //! Parameters of the crack gas model (input section [crack_gas], docs/input.md; docs/coupling.md "Gas in the
@@ -59,6 +72,12 @@ struct CrackGasOptions {
   std::optional<double> friction_factor;
   std::optional<double> roughness;  //!< [m] asperity height of the crack walls; unset: the residual aperture
   double viscosity = 5e-5;          //!< gas dynamic viscosity [Pa s] (laminar friction floor)
+  //! How the walls exchange heat with the gas (docs/coupling.md "Heat at the walls").
+  WallHeat walls = WallHeat::exchange;
+  //! [J/kg] p / rho of a gas at the walls' temperature (R T_wall); unset: the coupler sets the ambient air's
+  //! (the rock at the air's temperature). A CrackGas alone needs it unless its walls are adiabatic.
+  std::optional<double> wall_theta;
+  double prandtl = 0.71;            //!< the gas's Prandtl number [-] (air, 300-1500 K)
   double courant = 0.4;             //!< Courant number of the channel solver's substeps, in [kMinCourant, 1]
   //! The smallest Courant number accepted: the substeps of one coupled step grow as 1 / courant, and below this
   //! a run takes more than 40 times the default's channel work for no accuracy (the scheme's error is that of its
@@ -82,12 +101,11 @@ struct CrackGasOptions {
   double handover_width = kDefaultHandoverWidth;
   static constexpr double kDefaultHandoverWidth = 2.0;
   //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0, roughness > 0,
-  //! viscosity >= 0, kMinCourant <= courant <= 1, handover_width >= 1 and 0 <= vacuum_fraction < 1 (all finite).
+  //! viscosity >= 0, kMinCourant <= courant <= 1, handover_width >= 1, 0 <= vacuum_fraction < 1, prandtl > 0 and
+  //! wall_theta > 0 (set unless the walls are adiabatic; all finite).
   void validate() const;
   //! The kernels' flow parameters: a constant friction factor, or Louis's law with the roughness.
-  ChannelFlowParams flow() const {
-    return {friction_factor.value_or(-1.0), roughness.value_or(residual_aperture), viscosity};
-  }
+  ChannelFlowParams flow() const;
 };
 
 //! How the coupled steps are made (the driver's [time] and [coupling] keys).

@@ -34,6 +34,7 @@ struct CrackGasTotals {
   double max_pressure = 0;   //!< [Pa]
   long gas_segments = 0;     //!< segments that hold their own gas (kSegmentGas)
   long wet_segments = 0;     //!< of those, segments above 1.5 times the reference pressure
+  double wall_heat = 0;      //!< [J/m] heat the cracks' gas gave their walls since the start (CrackGasOptions::walls)
   // the coupling's ledgers since the start (CrackGasCoupling; 0 for a network alone)
   double to_grid_mass = 0;    //!< [kg/m] given to the grid's cells through mouths and hand-overs (< 0: taken)
   double to_grid_energy = 0;  //!< [J/m] likewise

@@ -176,18 +176,41 @@ BLAST_HD inline RoughChannelFriction louis_friction(double r) {
 }
 
 
+//! The rough-wall factors of a channel of aperture w [m]: flow.friction_factor when >= 0, else
+//! louis_friction(k / (2 w)): a crack's walls are rougher the narrower it is.
+BLAST_HD inline RoughChannelFriction wall_friction(double w, const ChannelFlowParams& flow) {
+  return flow.friction_factor >= 0.0 ? RoughChannelFriction{flow.friction_factor, 1.0}
+                                     : louis_friction(0.5 * flow.roughness / w);
+}
+
 //! Friction rate [1/s] of a channel of aperture w [m]: dq/dt = -rate q, from the Darcy-Weisbach wall shear
 //! tau = f rho u |u| / 8 on both walls (hydraulic diameter 2 w): rate = f |u| / (4 w), with f the larger of the
-//! rough-wall factor and the laminar one, 96 / Re (Re = rho |u| 2 w / mu; parallel plates) times Louis's
-//! roughness factor, so a slow flow follows the cubic law (mean velocity w^2 / (12 mu) times the pressure
-//! gradient, reduced by the roughness). The rough-wall factor is flow.friction_factor when >= 0, else
-//! louis_friction(k / (2 w)): a crack's walls are rougher the narrower it is.
+//! rough-wall factor (wall_friction()) and the laminar one, 96 / Re (Re = rho |u| 2 w / mu; parallel plates)
+//! times Louis's roughness factor, so a slow flow follows the cubic law (mean velocity w^2 / (12 mu) times the
+//! pressure gradient, reduced by the roughness).
 BLAST_HD inline double friction_rate(double rho, double u, double w, const ChannelFlowParams& flow) {
-  const RoughChannelFriction f =
-      flow.friction_factor >= 0.0 ? RoughChannelFriction{flow.friction_factor, 1.0} : louis_friction(0.5 * flow.roughness / w);
+  const RoughChannelFriction f = wall_friction(w, flow);
   const double turbulent = f.turbulent * fabs(u) / (4.0 * w);
   if (!(rho > 0.0)) return turbulent;
   return fmax(turbulent, f.laminar_factor * 12.0 * flow.viscosity / (rho * w * w));
+}
+
+//! Nusselt number Nu = h D_h / k of fully developed laminar flow between parallel plates at one uniform
+//! temperature (Shah & London 1978, "Laminar Flow Forced Convection in Ducts", Academic Press, ch. VI; D_h = 2 w).
+inline constexpr double kParallelPlateNusselt = 7.541;
+
+//! Heat exchange rate [1/s] of a channel's gas with its walls: d(e - e_w)/dt = -rate (e - e_w) for the specific
+//! internal energy e and its value e_w at the walls' temperature, from a wall heat flux q = h (T - T_w) on both
+//! walls (per unit length 2 q against the gas's rho w c_v (T - T_w)): rate = 2 h / (rho w c_v). h is the larger
+//! of the turbulent one of the Chilton-Colburn analogy, St = h / (rho c_p |u|) = (f / 8) Pr^(-2/3) with the
+//! rough-wall factor f of the friction (Chilton & Colburn 1934, Ind. Eng. Chem. 26:1183; Incropera & DeWitt,
+//! "Fundamentals of Heat and Mass Transfer", eq. 8.66 for the Darcy factor), rate = gamma Pr^(-2/3) f |u| / (4 w),
+//! and the laminar one, Nu = 7.541 (kParallelPlateNusselt), k = mu c_p / Pr: rate = Nu gamma mu / (Pr rho w^2).
+//! gamma = c_p / c_v = 1 + Gamma, the mixture's Gruneisen coefficient.
+BLAST_HD inline double wall_heat_rate(double rho, double u, double w, double gamma, const ChannelFlowParams& flow) {
+  const double turbulent = gamma * flow.colburn * wall_friction(w, flow).turbulent * fabs(u) / (4.0 * w);
+  if (!(rho > 0.0)) return turbulent;
+  return fmax(turbulent, kParallelPlateNusselt * gamma * flow.viscosity / (flow.prandtl * rho * w * w));
 }
 
 //! minmod slope limiter.
@@ -222,7 +245,8 @@ BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat,
   X(std::uint8_t, kind, "CrackSegmentKind")                                            \
   X(ChannelConserved, cons, "its gas, per unit thickness")                             \
   X(double, volume, "the volume [m2 per m] cons refers to")                            \
-  X(ChannelPrimitive, prim, "state of the last primitive pass")
+  X(ChannelPrimitive, prim, "state of the last primitive pass")                       \
+  X(double, wall_heat, "heat [J/m] its gas gave the walls since the start (< 0: took)")
 //! Per end (2 a segment), the step's work arrays: the states at the ends, then the fluxes through them.
 #define BLASTSIM_CRACK_END_STATES(X) X(ChannelPrimitive, face, "the MUSCL-Hancock state at the end, segment frame")
 #define BLASTSIM_CRACK_END_FLUXES(X)                                                   \
@@ -426,13 +450,17 @@ struct JunctionFluxKernel {
 //! Conservative update of every gas segment from its two ends' outflows, the pressure of the walls where the
 //! flux area changes (p (A1 - A0): a uniform gas at rest stays at rest in a channel of varying aperture), then
 //! the wall friction, implicit (q / (1 + dt k), friction_rate()); friction turns kinetic energy into heat, so
-//! E does not change.
+//! E does not change. Then the walls' heat (flow.walls): none (adiabatic); the specific internal energy set to the
+//! walls' e_w = wall_theta / Gamma (isothermal: a gas at the walls' temperature, p / rho = R T_w); or relaxed
+//! towards it, implicit (e_w + (e - e_w) / (1 + dt rate), wall_heat_rate()). The heat given is booked in
+//! wall_heat.
 struct SegmentUpdateKernel {
+  cip::GasMaterials mat;
   CrackGeometry<Access::read> geo;
-  CrackSegments<Access::read_write> seg;  //!< writes cons
+  CrackSegments<Access::read_write> seg;  //!< writes cons and wall_heat
   CrackEndFluxes<Access::read> ends;
   ChannelFlowParams flow;
-  double vacuum_density;  //!< [kg/m3] at or below it a segment holds no momentum
+  double vacuum_density;  //!< [kg/m3] at or below it a segment holds no momentum and exchanges no heat
   double dt;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
@@ -446,8 +474,18 @@ struct SegmentUpdateKernel {
     c.q -= dt * (o1.q - o0.q - seg.prim[s].p * (ends.end_area[2 * s + 1] - ends.end_area[2 * s]));
     const double V = seg.volume[s];
     if (c.m > vacuum_density * V && c.m > 0.0) {
-      const double k = friction_rate(c.m / V, c.q / c.m, geo.aperture[s], flow);
+      const double w = geo.aperture[s];
+      const double k = friction_rate(c.m / V, c.q / c.m, w, flow);
       c.q /= 1.0 + dt * k;
+      if (flow.walls != WallHeat::adiabatic) {
+        const double u = c.q / c.m, e = (c.E - 0.5 * c.q * u) / c.m;
+        const double G = mat.mixture_gruneisen(c.am / c.m), e_w = flow.wall_theta / G;
+        const double keep =
+            flow.walls == WallHeat::isothermal ? 0.0 : 1.0 / (1.0 + dt * wall_heat_rate(c.m / V, u, w, 1.0 + G, flow));
+        const double heat = c.m * (e - e_w) * (1.0 - keep);
+        c.E -= heat;
+        seg.wall_heat[s] += heat;
+      }
     } else {
       c.q = 0.0;  // vacuum holds no momentum
     }
@@ -526,6 +564,12 @@ struct GasSegmentValue {
     }
     return 0.0;
   }
+};
+
+//! The heat [J/m] segment s's gas gave its walls since the start (CrackGas::totals()).
+struct WallHeatOf {
+  CrackSegments<Access::read> seg;
+  BLAST_HD double operator()(index_t s) const { return seg.wall_heat[s]; }
 };
 
 //! The density [kg/m3] of mouth J's reservoir when it is open, 0 otherwise (CrackGas::vacuum_density()).
