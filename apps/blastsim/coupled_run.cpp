@@ -456,8 +456,13 @@ std::string crack_gas_line(const ibm::CrackGasOptions& o, const ibm::CrackGasCou
       acting.walls == ibm::WallHeat::adiabatic
           ? std::string("adiabatic walls")
           : fmt::format("{} walls at p / rho = {:.4g} J/kg", ibm::wall_heat_name(acting.walls), acting.wall_theta.value_or(0.0));
-  return fmt::format("crack gas on (residual aperture {:.3g} m, {}, {}, hand-over to the grid at {:.3g} m wide, {} junctions)",
-                     o.residual_aperture, friction, walls, gaps.handover, crack.crack_gas().junction_count());
+  const std::string closure =
+      o.joint_closure ? fmt::format("open joints close by Barton-Bandis (K_ni {:.4g} Pa/m, V_m {:.4g} m)",
+                                    o.joint_closure->stiffness, o.joint_closure->max_closure)
+                      : std::string("open joints keep their initial aperture");
+  return fmt::format("crack gas on (residual aperture {:.3g} m, {}, {}, {}, hand-over to the grid at {:.3g} m wide, {} "
+                     "junctions)",
+                     o.residual_aperture, friction, walls, closure, gaps.handover, crack.crack_gas().junction_count());
 }
 
 }  // namespace

@@ -32,6 +32,13 @@ void read_coupling(TableReader& root, Case& c) {
   o.second_order = crack.boolean("second_order", o.second_order);
   o.handover_width = crack.number("handover_width", "cells", Range{1.0, 1e6, false, false}, o.handover_width);
   o.vacuum_fraction = crack.number("vacuum_fraction", "", Range{0.0, 1.0, false, true}, o.vacuum_fraction);
+  const std::optional<double> stiffness = crack.optional_number("joint_closure_stiffness", "Pa/m", Range::positive());
+  const std::optional<double> max_closure = crack.optional_number("joint_max_closure", "m", Range::positive());
+  if (stiffness.has_value() != max_closure.has_value())
+    throw InputError(fmt::format("crack_gas.{} is given without crack_gas.{}: the closure law of open joints needs both",
+                                 stiffness ? "joint_closure_stiffness" : "joint_max_closure",
+                                 stiffness ? "joint_max_closure" : "joint_closure_stiffness"));
+  if (stiffness) o.joint_closure = ibm::JointClosure{*stiffness, *max_closure};
   crack.finish();
   // An initial aperture is the crack gas's room; the rock's faces touch, so the grid has no gap there, and an
   // aperture as wide as the hand-over gap (where a crack's gas becomes the grid's) would need one.
@@ -47,6 +54,23 @@ void read_coupling(TableReader& root, Case& c) {
   };
   for (const fdem::PreCutCrack& cut : c.rock.model.cracks) check_aperture(cut.label, cut.initial_aperture);
   for (const fdem::JointSetSpec& set : c.rock.model.joint_sets) check_aperture(set.label, set.initial_aperture);
+  if (o.joint_closure) {  // the closure law closes the joints that stand open
+    bool any = false;
+    auto check_closure = [&](const std::string& label, double aperture) {
+      if (!(aperture > 0)) return;
+      any = true;
+      if (!(o.joint_closure->max_closure < aperture))
+        throw InputError(fmt::format("crack_gas.joint_max_closure = {:g} m: must be below {}.initial_aperture = {:g} m "
+                                     "(the joint cannot close by more than it stands open)",
+                                     o.joint_closure->max_closure, label, aperture));
+    };
+    for (const fdem::PreCutCrack& cut : c.rock.model.cracks) check_closure(cut.label, cut.initial_aperture);
+    for (const fdem::JointSetSpec& set : c.rock.model.joint_sets)
+      if (set.open) check_closure(set.label, set.initial_aperture);
+    if (!any)
+      throw InputError(fmt::format("crack_gas.joint_closure_stiffness and joint_max_closure are given, but no "
+                                   "[[rock.crack]] or open [[rock.joint_set]] has an initial_aperture for them to close"));
+  }
 }
 
 }  // namespace blastsim::app

@@ -386,7 +386,8 @@ RockView RockSolver::view() {
 
 RockReadView RockSolver::view() const {
   const detail::RockArrays& a = *a_;
-  return {a.nodes.read(), a.edge_params.view(), a.edges.read(), a.joint_params.view(), a.joints.read(), triangles_, joints_};
+  return {a.nodes.read(), a.edge_params.view(), a.edges.read(), a.joint_params.view(), a.joints.read(),
+          a.triangles.read(), triangles_, joints_};
 }
 
 std::vector<double> RockSolver::edge_pressures() const { return to_host(a_->edge_loads.pressure); }

@@ -31,6 +31,10 @@ void CrackGasOptions::validate() const {
   if (!(prandtl > 0) || !std::isfinite(prandtl)) bad("prandtl", prandtl, "must be > 0");
   if (wall_theta && (!(*wall_theta > 0) || !std::isfinite(*wall_theta)))
     bad("wall_theta", *wall_theta, "must be > 0 [J/kg]");
+  if (joint_closure && (!(joint_closure->stiffness > 0) || !std::isfinite(joint_closure->stiffness)))
+    bad("joint_closure_stiffness", joint_closure->stiffness, "must be > 0 [Pa/m]");
+  if (joint_closure && (!(joint_closure->max_closure > 0) || !std::isfinite(joint_closure->max_closure)))
+    bad("joint_max_closure", joint_closure->max_closure, "must be > 0 [m]");
   if (walls != WallHeat::adiabatic && !wall_theta)
     throw InputError(std::string("crack gas: walls = ") + wall_heat_name(walls) +
                      " needs the walls' temperature (wall_theta = R T_wall [J/kg]; a coupled run sets the ambient air's)");

@@ -62,6 +62,8 @@ CrackGasCoupling::CrackGasCoupling(const fdem::RockSolver& rock, const cip::GasM
   for (const fdem::BoundaryEdge& b : rock.boundary_edges()) outline[vertex[b.n0]] = outline[vertex[b.n1]] = 1;
   copy_from_host(a_->places.outline, outline);
   a_->params.initial_aperture.assign(segments, 0.0);
+  a_->params.closure_stiffness.assign(segments, 0.0);
+  a_->params.max_closure.assign(segments, 0.0);
   a_->mouth_cells.cell.assign(kMouthSamples * static_cast<std::size_t>(junctions), -1);
   a_->mouth_cells.sharers.assign(kMouthSamples * static_cast<std::size_t>(junctions), 0);
   a_->mouth_cells.share.assign(kMouthSamples * static_cast<std::size_t>(junctions), ChannelConserved{0, 0, 0, 0, 0});
@@ -81,13 +83,23 @@ CrackGasCoupling::~CrackGasCoupling() = default;
 void CrackGasCoupling::set_initial_apertures(const std::vector<int>& joints, double aperture) {
   if (!(aperture >= 0) || !std::isfinite(aperture))
     throw InputError("crack gas: initial aperture " + std::to_string(aperture) + " m: must be >= 0");
-  std::vector<double> a = to_host(a_->params.initial_aperture);
+  const std::optional<JointClosure>& law = crack_->options().joint_closure;
+  const bool closes = law && aperture > 0;
+  if (closes && !(law->max_closure < aperture))
+    throw InputError("crack gas: joint_max_closure = " + std::to_string(law->max_closure) +
+                     " m: must be below the initial aperture of the joints it closes (" + std::to_string(aperture) + " m)");
+  std::vector<double> a = to_host(a_->params.initial_aperture), k = to_host(a_->params.closure_stiffness),
+                      vm = to_host(a_->params.max_closure);
   for (const int j : joints) {
     if (j < 0 || j >= crack_->segment_count())
       throw InputError("crack gas: joint " + std::to_string(j) + " out of range for an initial aperture");
     a[j] = aperture;
+    k[j] = closes ? law->stiffness : 0.0;
+    vm[j] = closes ? law->max_closure : 0.0;
   }
   copy_from_host(a_->params.initial_aperture, a);
+  copy_from_host(a_->params.closure_stiffness, k);
+  copy_from_host(a_->params.max_closure, vm);
 }
 
 HandoverGaps CrackGasCoupling::handover_gaps(const cip::GasGrid& g) const {

@@ -241,6 +241,24 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   dry.replace(dry.find("enabled = true"), 14, "enabled = false");
   CHECK_THROWS_WITH(app::read_case(toml::parse(dry + "\n[[rock.crack]]\nfrom = [0.06, 0.0]\nto = [0.3, 0.0]\ninitial_aperture = 1e-4\n")),
                     Catch::Contains("rock.crack.0.initial_aperture"));
+  // The closure law of open joints: both keys or neither, a maximum closure below every initial aperture it
+  // closes, and something for it to close.
+  const std::vector<std::string> closure{"crack_gas.joint_closure_stiffness=2e10", "crack_gas.joint_max_closure=5e-5"};
+  std::string closing_text = text;  // the example with the closure law, and a pre-cut crack of aperture a0
+  closing_text.replace(closing_text.find("[crack_gas]"), 11,
+                       "[crack_gas]\njoint_closure_stiffness = 2e10\njoint_max_closure = 5e-5");
+  auto closing_crack = [&](const std::string& a0) {
+    return app::read_case(toml::parse(closing_text + "\n[[rock.crack]]\nfrom = [0.06, 0.0]\nto = [0.3, 0.0]\n"
+                                                     "initial_aperture = " + a0 + "\n"));
+  };
+  CHECK_THROWS_WITH(read({closure[0]}), Catch::Contains("crack_gas.joint_closure_stiffness") &&
+                                            Catch::Contains("crack_gas.joint_max_closure"));
+  CHECK_THROWS_WITH(read(closure), Catch::Contains("initial_aperture for them to close"));
+  const app::Case closing = closing_crack("1e-4");
+  REQUIRE(closing.coupling.crack_gas_options.joint_closure.has_value());
+  CHECK(closing.coupling.crack_gas_options.joint_closure->max_closure == 5e-5);
+  CHECK_THROWS_WITH(closing_crack("4e-5"),
+                    Catch::Contains("crack_gas.joint_max_closure") && Catch::Contains("rock.crack.0.initial_aperture"));
   // With one dt for both solvers, a fixed dt above the rock's stable step is refused at the start, naming
   // the stable value.
   std::ostringstream log;

@@ -1,10 +1,11 @@
 //! \file test_crack_coupling.cpp
 //! \brief docs/validation.md C4-C5: the crack gas coupled to the grid gas and the rock (GasRockCoupler with
 //! enable_crack_gas()): total gas mass kept exactly while cracks grow, and the lumped limit of a rigid crack
-//! filled from a hole.
+//! filled from a hole; C12: an open joint's aperture under normal stress.
 #include "catch.hpp"
 #include "hole_in_rock.hpp"
 
+#include "blastsim/fdem/rock_model.hpp"
 #include "blastsim/ibm/budget.hpp"
 
 #include <algorithm>
@@ -270,3 +271,83 @@ TEST_CASE("C7 crack gas: a crack held at a gas pressure opens as Sneddon's crack
   CHECK(checked >= 8);
 }
 #endif
+
+TEST_CASE("C12 open joints under stress: an open pre-cut crack's aperture follows the Barton-Bandis hyperbola of its "
+          "effective normal stress",
+          "[ibm][crack][C12]") {
+  // A plate of the paper's rock (strengths x 100: intact), 0.3 x 0.2 m on a structured mesh of 25 mm cells, held
+  // on every side by a uniform in-situ stress -S in x and y; a horizontal pre-cut crack across its middle third
+  // stands open by a0 = 1 mm, its gas at p = 1 MPa, and closes by the Barton-Bandis hyperbola with K_ni = 20
+  // MPa/mm and V_m = 0.5 mm. The uniform field is carried across the crack by the faces' contact, so the
+  // asperities see S - p, and the segments' aperture must be w_r + a0 - (S - p) V_m / (K_ni V_m + S - p), p the
+  // gas's pressure as it stands (the closing joint compresses its gas): for S = 5 and 40 MPa a closure of about
+  // 0.14 and 0.40 mm, on the hyperbola's bend towards V_m. The faces' contact overlap (microns) and the triangles'
+  // stress near the crack tips enter too: bound 3 % of the closure, on the crack's middle joints.
+  const double K = 2e10, Vm = 5e-4, a0 = 1e-3, p = 1e6, wr = 1e-5;
+  for (const double S : {5e6, 40e6}) {
+    fdem::NamedMesh mesh;
+    mesh.mesh = fdem::structured_rectangle(12, 8, 0.0, 0.3, 0.0, 0.2);
+    const fdem::FdemTopology topo = fdem::build_topology(mesh.mesh);
+    fdem::RockOptions ro;
+    ro.damping_ratio = 0.9;
+    fdem::RockSolver rock(topo, test::intact_rock(), ro);
+    const std::vector<int> crack = rock.joints_on_segment(0.1, 0.1, 0.2, 0.1, 1e-6);
+    REQUIRE(crack.size() >= 4);
+    rock.break_joints(crack);
+    std::vector<int> all;
+    for (const fdem::BoundaryEdge& b : topo.boundary_edges) all.push_back(b.n0);
+    fdem::InSituStress field;
+    field.at_reference = {-S, -S, 0.0};
+    fdem::set_in_situ_stress(rock, field, all);
+    const cip::GasPoint ambient{1.2, 2.09e5, 0, 0};
+    cip::GasSolver gas(cip::GasGrid::from_box(8, 8, 0.02, 0.28, 0.02, 0.18), cip::EquationOfState::ideal(1.4));
+    gas.initialise([&](double, double) { return ambient; });
+    ibm::GasRockCoupler coupler(gas, rock, ambient);
+    ibm::CrackGasOptions opt;
+    opt.residual_aperture = wr, opt.friction_factor = 0, opt.viscosity = 0, opt.walls = ibm::WallHeat::adiabatic;
+    opt.joint_closure = ibm::JointClosure{K, Vm};
+    ibm::CrackGasCoupling& cg = coupler.enable_crack_gas(opt);
+    cg.set_initial_apertures(crack, a0);
+    std::vector<std::uint8_t> kind(rock.joint_count(), ibm::kSegmentNone);
+    std::vector<ibm::ChannelConserved> cons(rock.joint_count(), ibm::ChannelConserved{0, 0, 0, 0, 0});
+    std::vector<double> volume(rock.joint_count(), 1.0);
+    for (int j : crack) {
+      kind[j] = ibm::kSegmentGas, volume[j] = 0.025 * a0;
+      cons[j] = {10.0 * volume[j], 0.0, p / 0.4 * volume[j], 0.0, 0.0};
+    }
+    cg.crack_gas().set_gas(kind, cons, volume);
+    coupler.rock_to_gas();
+    REQUIRE(coupler.inactive_cells() == 64);  // the grid lies inside the plate: the crack has no mouth
+    const double dt = 0.9 * rock.stable_dt() * 4;
+    for (int k = 0; k < 300; ++k) coupler.step(dt, 4);
+    const std::vector<double> w = cg.crack_gas().apertures();
+    const std::vector<ibm::ChannelPrimitive> prim = cg.crack_gas().primitives();
+    const fdem::RockSnapshot snap = rock.snapshot();
+    int checked = 0;
+    for (int j : crack) {
+      const auto& n = snap.joint_nodes[j];
+      const double xm = 0.5 * (snap.x[n[0]] + snap.x[n[1]]);
+      if (xm < 0.125 || xm > 0.175) continue;  // the middle joints
+      const double sigma = S - prim[j].p, closure = sigma * Vm / (K * Vm + sigma), law = wr + a0 - closure;
+      std::printf("C12 S = %.0f MPa, joint at x = %.4f m: gas %.4f MPa, aperture %.5e m, law %.5e m (closure %.4e m): "
+                  "%+.2f %% of the closure (bound 3 %%)\n",
+                  S / 1e6, xm, prim[j].p / 1e6, w[j], law, closure, 100 * (w[j] - law) / closure);
+      CHECK(std::fabs(w[j] - law) < 0.03 * closure);
+      ++checked;
+    }
+    CHECK(checked >= 2);
+  }
+  // The closure cannot exceed the aperture it closes.
+  {
+    fdem::NamedMesh mesh;
+    mesh.mesh = fdem::structured_rectangle(4, 4, 0.0, 0.1, 0.0, 0.1);
+    fdem::RockSolver rock(fdem::build_topology(mesh.mesh), test::intact_rock(), fdem::RockOptions{});
+    const cip::GasPoint ambient{1.2, 2.09e5, 0, 0};
+    cip::GasSolver gas(cip::GasGrid::from_box(4, 4, 0.0, 0.1, 0.0, 0.1), cip::EquationOfState::ideal(1.4));
+    ibm::GasRockCoupler coupler(gas, rock, ambient);
+    ibm::CrackGasOptions opt;
+    opt.joint_closure = ibm::JointClosure{K, 2e-3};
+    ibm::CrackGasCoupling& cg = coupler.enable_crack_gas(opt);
+    CHECK_THROWS_WITH(cg.set_initial_apertures({0}, 1e-3), Catch::Contains("joint_max_closure"));
+  }
+}

@@ -188,6 +188,7 @@ struct RockReadView {
   EdgeState<Access::read> edges;  //!< per slot: exposure (kEdgeInside, kEdgeBoundary, kEdgeCrackFace)
   JointParams joint;              //!< per joint: its four nodes
   JointState<Access::read> joints;  //!< per joint: broken flag, damage, opening
+  TriangleState<Access::read> triangles;  //!< per triangle: Cauchy stress of its last step
   int triangle_count, joint_count;
 };
 //! What a coupler sees of the rock in a step (RockSolver::view()): the read view, and the edge loads it writes

@@ -63,10 +63,20 @@ struct ChannelFlowParams {
   double colburn;          //!< Pr^(-2/3) [-] (the Chilton-Colburn factor)
 };
 
+//! The hyperbolic closure of an open joint's asperities under normal stress (Bandis, Lumsden & Barton 1983):
+//! closure = sigma V_m / (K_ni V_m + sigma) (docs/coupling.md "Open joints under stress").
+struct JointClosure {
+  double stiffness;    //!< initial normal stiffness K_ni [Pa/m]
+  double max_closure;  //!< maximum closure V_m [m], below every open joint's initial aperture
+};
+
 //! Parameters of the crack gas model (input section [crack_gas], docs/input.md; docs/coupling.md "Gas in the
 //! cracks" gives their sources).
 struct CrackGasOptions {
   double residual_aperture = 1e-5;  //!< [m] aperture of a crack whose faces touch (its gas volume is L x this)
+  //! The closure law of the joints given an initial aperture (CrackGasCoupling::set_initial_apertures()); unset:
+  //! they keep their initial aperture under any normal stress.
+  std::optional<JointClosure> joint_closure;
   //! A constant rough-wall Darcy friction factor [-]; unset: Louis's law of the relative roughness
   //! roughness / (2 w) (louis_friction()), which falls as the crack opens.
   std::optional<double> friction_factor;
@@ -102,7 +112,8 @@ struct CrackGasOptions {
   static constexpr double kDefaultHandoverWidth = 2.0;
   //! Throws InputError naming the parameter unless residual_aperture > 0, friction_factor >= 0, roughness > 0,
   //! viscosity >= 0, kMinCourant <= courant <= 1, handover_width >= 1, 0 <= vacuum_fraction < 1, prandtl > 0 and
-  //! wall_theta > 0 (set unless the walls are adiabatic; all finite).
+  //! wall_theta > 0 (set unless the walls are adiabatic), joint_closure's stiffness and maximum closure > 0 (all
+  //! finite).
   void validate() const;
   //! The kernels' flow parameters: a constant friction factor, or Louis's law with the roughness.
   ChannelFlowParams flow() const;

@@ -26,7 +26,10 @@ namespace blastsim::ibm {
 //! segment its initial aperture (fixed) and the gas it hands to the grid; per deposit record (the mouths, then
 //! the segments) the sort by cell that makes the deposits' sums independent of the thread order.
 #define BLASTSIM_CRACK_JUNCTION_PLACES(X) X(std::uint8_t, outline, "1: the junction's vertex lies on the mesh outline")
-#define BLASTSIM_CRACK_SEGMENT_PARAMS(X) X(double, initial_aperture, "opening [m] of a pre-cut crack whose faces touch")
+#define BLASTSIM_CRACK_SEGMENT_PARAMS(X)                                                                    \
+  X(double, initial_aperture, "opening [m] of a pre-cut crack whose faces touch")                           \
+  X(double, closure_stiffness, "Barton-Bandis initial normal stiffness K_ni [Pa/m] of an open joint")       \
+  X(double, max_closure, "Barton-Bandis maximum closure V_m [m] of an open joint (0: its aperture does not close)")
 //! A mouth draws from (and gives to) the grid cells at kMouthSamples points across its opening, so that an opening
 //! wider than a cell is not fed through one cell.
 inline constexpr int kMouthSamples = 3;
@@ -148,6 +151,32 @@ BLAST_HD inline double faces_opening(const fdem::Vec2& a0, const fdem::Vec2& a1,
   return a + fmax(0.0, segments_distance(a0, a1, b0, b1) - fabs(a));
 }
 
+//! Closure [m] of an open joint's asperities under the effective normal stress sigma [Pa] (compression
+//! positive), by the hyperbola of Bandis, Lumsden & Barton (1983, Int. J. Rock Mech. Min. Sci. 20:249; Barton,
+//! Bandis & Bakhtar 1985, Int. J. Rock Mech. Min. Sci. 22:121): dV = sigma V_m / (K_ni V_m + sigma), with the
+//! initial normal stiffness K_ni [Pa/m] and the maximum closure V_m [m]; its slope at sigma = 0 is 1 / K_ni and
+//! it tends to V_m. 0 for sigma <= 0 or V_m = 0 (no closure law).
+BLAST_HD inline double joint_closure(double sigma, double stiffness, double max_closure) {
+  if (!(sigma > 0.0) || !(max_closure > 0.0)) return 0.0;
+  return sigma * max_closure / (stiffness * max_closure + sigma);
+}
+
+//! The effective normal stress [Pa] (compression positive) on the asperities of joint s: the mean of its two
+//! triangles' normal stress n . T n across the joint (T of their last step, RockReadView::triangles), less the
+//! pressure p [Pa] of the gas in it, which carries that part of the load.
+BLAST_HD inline double joint_asperity_stress(const fdem::RockView& rock, int s, double p) {
+  const fdem::JointNodes jn = rock.joint.nodes[s];
+  const fdem::NodeMotion<Access::read>& x = rock.nodes;
+  const fdem::Vec2 n = fdem::edge_outward_normal(x.position(jn.a0), x.position(jn.a1));
+  const double len2 = n.x * n.x + n.y * n.y;
+  if (!(len2 > 0.0)) return 0.0;
+  auto normal_stress = [&](int slot) {
+    const fdem::TriangleStress T = rock.triangles.stress[slot / 3];
+    return (T.xx * n.x * n.x + 2.0 * T.xy * n.x * n.y + T.yy * n.y * n.y) / len2;
+  };
+  return -0.5 * (normal_stress(jn.a0) + normal_stress(jn.b0)) - p;
+}
+
 //! The faces of joint s in the rock's current state: their nodes' positions (a0 -> a1 is face A, b0 -> b1 face B;
 //! a0 faces b1, a1 faces b0), the lengths, and the crack's mean opening [m] (faces_opening()).
 //! `lag` [s] > 0 takes the positions x - lag v instead: with half the rock's last step (RockSolver::last_step()),
@@ -165,6 +194,18 @@ BLAST_HD inline JointFaces joint_faces(const fdem::RockView& rock, int s, double
   f.lb = sqrt((f.b1.x - f.b0.x) * (f.b1.x - f.b0.x) + (f.b1.y - f.b0.y) * (f.b1.y - f.b0.y));
   f.opening = faces_opening(f.a0, f.a1, f.b0, f.b1, f.la, f.lb);
   return f;
+}
+
+//! Hydraulic aperture of segment s (crack_width()) from its faces f, its initial aperture and, for an open joint
+//! with a closure law, the Barton-Bandis closure of its asperities under the effective normal stress with its
+//! gas at pressure p [Pa] (joint_closure(), joint_asperity_stress()): the opening w_r + o + a_0 - dV.
+BLAST_HD inline CrackWidth segment_width(const fdem::RockView& rock, const CrackSegmentParams& params, int s,
+                                         const JointFaces& f, double p, double residual_aperture) {
+  const double closure =
+      params.max_closure[s] > 0.0
+          ? joint_closure(joint_asperity_stress(rock, s, p), params.closure_stiffness[s], params.max_closure[s])
+          : 0.0;
+  return crack_width(f.opening + params.initial_aperture[s] - closure, residual_aperture);
 }
 
 //! The area [m2 per m] the two faces swept away from each other since they stood at `was`, as the rock's work
@@ -211,7 +252,7 @@ struct CrackGeometryKernel {
       return;
     }
     const JointFaces f = joint_faces(rock, s, lag);
-    const CrackWidth cw = crack_width(f.opening + params.initial_aperture[s], residual_aperture);
+    const CrackWidth cw = segment_width(rock, params, s, f, seg.prim[s].p, residual_aperture);
     const double L = 0.5 * (f.la + f.lb), w = cw.w, V = L * w;
     geo.length[s] = L, geo.aperture[s] = w;
     const std::uint8_t kind = seg.kind[s];
@@ -536,8 +577,8 @@ struct CrackCushionKernel {
     const int s = static_cast<int>(si);
     if (seg.kind[s] != kSegmentGas) return;
     const JointFaces f = joint_faces(rock, s, lag);
-    const CrackWidth cw = crack_width(f.opening + params.initial_aperture[s], residual_aperture);
     const ChannelPrimitive P = seg.prim[s];
+    const CrackWidth cw = segment_width(rock, params, s, f, P.p, residual_aperture);
     const ChannelConserved c = seg.cons[s];
     const double U = c.m > 0.0 ? c.E - 0.5 * c.q * c.q / c.m : 0.0;
     const double p = is_vacuum(P) || !(U > 0.0) ? 0.0 : P.p;

@@ -37,8 +37,9 @@ class CrackGasCoupling : public CouplingProcess {
   void run(Stage stage, CouplingContext& ctx, const StageStep& step) override;
 
   //! Pre-cut cracks whose faces touch in the mesh but stand `aperture` [m] apart (a hydraulic opening added
-  //! to the faces' own; [[rock.crack]] initial_aperture). Throws InputError for a joint out of range or a
-  //! negative aperture.
+  //! to the faces' own; [[rock.crack]] initial_aperture). With CrackGasOptions::joint_closure their asperities
+  //! close under the effective normal stress by the Barton-Bandis hyperbola (segment_width()). Throws InputError
+  //! for a joint out of range, a negative aperture, or a maximum closure not below the aperture.
   void set_initial_apertures(const std::vector<int>& joints, double aperture);
   //! The crack widths [m] of the hand-over to the grid and back on grid g.
   HandoverGaps handover_gaps(const cip::GasGrid& g) const;
