@@ -9,7 +9,7 @@
 #include "blastsim/cip/gas_solver.hpp"
 #include "blastsim/fdem/rock_solver.hpp"
 #include "blastsim/ibm/charge_types.hpp"
-#include "blastsim/ibm/crack_gas.hpp"
+#include "blastsim/ibm/crack_gas_types.hpp"
 #include "blastsim/ibm/immersed_boundary_kernels.hpp"
 
 #include <array>
