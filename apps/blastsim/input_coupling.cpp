@@ -54,6 +54,9 @@ void read_coupling(TableReader& root, Case& c) {
   };
   for (const fdem::PreCutCrack& cut : c.rock.model.cracks) check_aperture(cut.label, cut.initial_aperture);
   for (const fdem::JointSetSpec& set : c.rock.model.joint_sets) check_aperture(set.label, set.initial_aperture);
+  if (o.joint_closure && !k.crack_gas)
+    throw InputError("crack_gas.joint_closure_stiffness and joint_max_closure close the open joints' crack gas: give "
+                     "[crack_gas] enabled = true, or leave them out");
   if (o.joint_closure) {  // the closure law closes the joints that stand open
     bool any = false;
     auto check_closure = [&](const std::string& label, double aperture) {

@@ -306,6 +306,8 @@ void CrackGas::read_checkpoint(CheckpointReader& r) {
   a_->segments.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   a_->geometry.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   check_kinds(r);
+  for (const double q : to_host(a_->segments.wall_heat))
+    if (!std::isfinite(q)) r.fail("crack.wall_heat", "not finite");
   update_primitives();
 }
 

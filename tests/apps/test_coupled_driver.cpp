@@ -259,6 +259,10 @@ TEST_CASE("Bad coupled input gives one clear error naming the key", "[app][coupl
   CHECK(closing.coupling.crack_gas_options.joint_closure->max_closure == 5e-5);
   CHECK_THROWS_WITH(closing_crack("4e-5"),
                     Catch::Contains("crack_gas.joint_max_closure") && Catch::Contains("rock.crack.0.initial_aperture"));
+  std::string dry_closing = closing_text;  // the law with the crack gas off
+  dry_closing.replace(dry_closing.find("enabled = true"), 14, "enabled = false");
+  CHECK_THROWS_WITH(app::read_case(toml::parse(dry_closing)),
+                    Catch::Contains("crack_gas.joint_closure_stiffness") && Catch::Contains("enabled = true"));
   // With one dt for both solvers, a fixed dt above the rock's stable step is refused at the start, naming
   // the stable value.
   std::ostringstream log;
@@ -406,10 +410,11 @@ TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy
                 "crack length %.3f m\n", tag, 1e6 * last.at("time_s"), work, residual, 100 * residual / work,
                 last.at("broken_joints"), last.at("crack_length_m"));
     CHECK(std::fabs(residual) < 0.05 * work);
-    // Cracks appear, and gas enters them: gas mass in the disc outside the hole region (r > 25 mm), in the grid
-    // and (with crack gas) in the cracks' own gas, grows well beyond the air that was there. With crack gas most
-    // of it stays in the cracks: their walls cool it (docs/coupling.md "Heat at the walls"), and little reaches
-    // the grid's cells within 0.4 ms.
+    // Cracks appear, and gas enters them. Without crack gas the grid carries it: the gas mass in the disc outside
+    // the hole region (r > 25 mm) grows well beyond the air that was there. With crack gas the cracks' own gas is
+    // the gas in them: it must hold more than three times that air. (With crack gas most of it stays in the cracks:
+    // their walls cool it, docs/coupling.md "Heat at the walls", and with paid edge pressures little reaches the
+    // grid's cells outside the hole region within 0.4 ms.)
     const auto cs = csv_columns(out / "coupling_series.csv");
     const double annulus0 = cs.at("disc_mass_kg_per_m").front() - cs.at("hole_mass_kg_per_m").front();
     const double annulus1 = cs.at("disc_mass_kg_per_m").back() - cs.at("hole_mass_kg_per_m").back();
@@ -422,7 +427,7 @@ TEST_CASE("Small single-hole blast end to end: symmetric before cracking, energy
     std::printf("blast (%s): gas in the disc outside the hole %.3e -> %.3e kg/m; in the cracks %.3e kg/m\n", tag, annulus0,
                 annulus1, crack_mass);
     CHECK(last.at("broken_joints") > 10);
-    CHECK(annulus1 + crack_mass > 3 * annulus0);
+    CHECK((crack_gas ? crack_mass : annulus1) > 3 * annulus0);
     if (crack_gas) CHECK(crack_mass > 0);
   }
 }

@@ -266,12 +266,14 @@ TEST_CASE("Rock mass: a seeded fuzz over the rock-mass, crack and in-situ keys k
       "rock.in_situ_stress.sigma_yy", "rock.in_situ_stress.tau_xy", "rock.in_situ_stress.boundaries",
       "rock.in_situ_stress.reference_y", "rock.in_situ_stress.max_steps", "rock.heterogeneity.modulus",
       "rock.heterogeneity.correlation_length", "rock.mesh.jitter", "rock.mesh.rotation", "rock.gravity",
-      "crack_gas.courant", "crack_gas.enabled"};
+      "crack_gas.courant", "crack_gas.enabled", "crack_gas.vacuum_fraction", "crack_gas.walls", "crack_gas.prandtl",
+      "crack_gas.joint_closure_stiffness", "crack_gas.joint_max_closure"};
   const std::vector<std::string> values{
       "0", "-1", "1e308", "1e-300", "nan", "inf", "1e17", "true", "false", "0.5", "0.02", "3e-6", "-2.0e6", "45.0",
       "[0.0, 0.0]", "[0.0, 0.06]", "[0.05, 0.0]", "[0.0, -9.81]", "[\"outer\"]", "[\"hole\"]", "[]", "0.003", "1e-8",
       // plausible values, so that many draws run
-      "30.0", "0.04", "0.8", "-1.0e6", "1e-4", "[0.025, 0.0]", "[0.045, 0.0]", "[\"outer\", \"hole\"]", "500"};
+      "30.0", "0.04", "0.8", "-1.0e6", "1e-4", "[0.025, 0.0]", "[0.045, 0.0]", "[\"outer\", \"hole\"]", "500",
+      "\"isothermal\"", "\"adiabatic\"", "2e10", "5e-5"};
   const std::vector<std::string> plausible{
       "rock.joint_set.0.angle=20.0", "rock.joint_set.0.spacing=0.015", "rock.joint_set.0.trace_length=0.03",
       "rock.joint_set.0.persistence=0.6", "rock.joint_set.0.offset=0.004", "rock.joint_set.0.offset=1e17",
@@ -282,7 +284,8 @@ TEST_CASE("Rock mass: a seeded fuzz over the rock-mass, crack and in-situ keys k
       "rock.in_situ_stress.max_steps=50", "rock.in_situ_stress.reference_y=0.06", "rock.gravity=[0.0, -9.81]",
       "rock.gravity=[3.0, -9.81]", "rock.heterogeneity.modulus=2.0", "rock.heterogeneity.correlation_length=0.02",
       "rock.heterogeneity.seed=5", "rock.mesh.jitter=0.1", "rock.mesh.rotation=17.0", "rock.initial_velocity=[1.0, 0.0]",
-      "crack_gas.enabled=true", "crack_gas.courant=0.05", "rock.pressure_ramp_time=1e-6"};
+      "crack_gas.enabled=true", "crack_gas.courant=0.05", "rock.pressure_ramp_time=1e-6",
+      "crack_gas.walls=\"isothermal\"", "crack_gas.joint_closure_stiffness=2e10", "crack_gas.joint_max_closure=5e-5"};
   const char* env = std::getenv("BLASTSIM_FUZZ_RUNS");
   const int runs = env ? std::max(1, std::atoi(env)) : 24;
   std::mt19937_64 rng(20261207);

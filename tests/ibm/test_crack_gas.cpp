@@ -226,10 +226,12 @@ TEST_CASE("A mouth held to a share of its draw is a nozzle of that share of the 
     std::vector<ChannelFlux> out(2, ChannelFlux{0, 0, 0, 0, 0});
     std::vector<double> area(2, 0.0);
     std::vector<ChannelConserved> deposit(2, ChannelConserved{0, 0, 0, 0, 0});
+    const std::vector<double> wall_heat(1, 0.0);
     const JunctionFluxKernel k{mat,
                                CrackGraph{segment_junction.data(), offset.data(), entry.data()},
                                CrackGeometry<Access::read>{length.data(), aperture.data()},
-                               CrackSegments<Access::read>{kind.data(), cons.data(), volume.data(), prim.data()},
+                               CrackSegments<Access::read>{kind.data(), cons.data(), volume.data(), prim.data(),
+                                                           wall_heat.data()},
                                CrackMouths<Access::read>{open.data(), reservoirs.data(), mass.data()},
                                CrackEndStates<Access::read>{faces.data()},
                                CrackEndFluxes<Access::read_write>{out.data(), area.data()},

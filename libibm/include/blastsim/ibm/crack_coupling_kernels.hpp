@@ -197,12 +197,13 @@ BLAST_HD inline JointFaces joint_faces(const fdem::RockView& rock, int s, double
 }
 
 //! Hydraulic aperture of segment s (crack_width()) from its faces f, its initial aperture and, for an open joint
-//! with a closure law, the Barton-Bandis closure of its asperities under the effective normal stress with its
-//! gas at pressure p [Pa] (joint_closure(), joint_asperity_stress()): the opening w_r + o + a_0 - dV.
+//! with a closure law whose faces touch (f.opening <= 0: the asperities carry the load only in contact), the
+//! Barton-Bandis closure of its asperities under the effective normal stress with its gas at pressure p [Pa]
+//! (joint_closure(), joint_asperity_stress()): the opening w_r + o + a_0 - dV.
 BLAST_HD inline CrackWidth segment_width(const fdem::RockView& rock, const CrackSegmentParams& params, int s,
                                          const JointFaces& f, double p, double residual_aperture) {
   const double closure =
-      params.max_closure[s] > 0.0
+      params.max_closure[s] > 0.0 && f.opening <= 0.0
           ? joint_closure(joint_asperity_stress(rock, s, p), params.closure_stiffness[s], params.max_closure[s])
           : 0.0;
   return crack_width(f.opening + params.initial_aperture[s] - closure, residual_aperture);
