@@ -132,7 +132,7 @@ std::pair<double, double> shortest_wave_matrix(bool predictor, double courant, A
 
 }  // namespace
 
-TEST_CASE("G17 sound: with the pressure predictor the time stepping neither amplifies nor damps it", "[cip][G17]") {
+TEST_CASE("G17 sound: with the pressure predictor the time stepping neither amplifies nor damps it", "[cip][G17][heavy]") {
   // docs/gas-solver.md "Time centring of the pressure": for the shortest wave (k' = 2 / dx) nu = 2 C. With the
   // work lagged by w = (gamma - 1) / (2 gamma) the amplification matrix of (u, p / (rho c)) has the trace
   // 2 - (1 - w) nu^2 and the determinant 1 + w nu^2; with the predictor (beta = w) 2 - nu^2 and exactly 1.
