@@ -196,7 +196,7 @@ BLAST_HD inline double friction_rate(double rho, double u, double w, const Chann
 }
 
 //! Nusselt number Nu = h D_h / k of fully developed laminar flow between parallel plates at one uniform
-//! temperature (Shah & London 1978, "Laminar Flow Forced Convection in Ducts", Academic Press, ch. VI; D_h = 2 w).
+//! temperature (Shah & London 1978, "Laminar Flow Forced Convection in Ducts", Academic Press; D_h = 2 w).
 inline constexpr double kParallelPlateNusselt = 7.541;
 
 //! Heat exchange rate [1/s] of a channel's gas with its walls: d(e - e_w)/dt = -rate (e - e_w) for the specific
@@ -204,7 +204,7 @@ inline constexpr double kParallelPlateNusselt = 7.541;
 //! walls (per unit length 2 q against the gas's rho w c_v (T - T_w)): rate = 2 h / (rho w c_v). h is the larger
 //! of the turbulent one of the Chilton-Colburn analogy, St = h / (rho c_p |u|) = (f / 8) Pr^(-2/3) with the
 //! rough-wall factor f of the friction (Chilton & Colburn 1934, Ind. Eng. Chem. 26:1183; Incropera & DeWitt,
-//! "Fundamentals of Heat and Mass Transfer", eq. 8.66 for the Darcy factor), rate = gamma Pr^(-2/3) f |u| / (4 w),
+//! "Fundamentals of Heat and Mass Transfer", ch. 8, with the Darcy factor), rate = gamma Pr^(-2/3) f |u| / (4 w),
 //! and the laminar one, Nu = 7.541 (kParallelPlateNusselt), k = mu c_p / Pr: rate = Nu gamma mu / (Pr rho w^2).
 //! gamma = c_p / c_v = 1 + Gamma, the mixture's Gruneisen coefficient.
 BLAST_HD inline double wall_heat_rate(double rho, double u, double w, double gamma, const ChannelFlowParams& flow) {
