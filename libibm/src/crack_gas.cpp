@@ -166,10 +166,9 @@ void CrackGas::update_primitives() {
 }
 
 void CrackGas::update_vacuum_density() {
-  const double segment = reduce_max("crack.densest", segments_, 0.0,
-                                    GasSegmentValue{a_->segments.read(), GasSegmentValue::density, 0.0});
-  const double mouth = reduce_max("crack.densest_mouth", junctions_, 0.0, MouthDensityOf{a_->mouths.read()});
-  vacuum_density_ = options_.vacuum_fraction * std::max(segment, mouth);
+  const index_t n = static_cast<index_t>(segments_) + junctions_;
+  vacuum_density_ = options_.vacuum_fraction *
+                    reduce_max("crack.densest", n, 0.0, DensestGasOf{a_->segments.read(), a_->mouths.read(), segments_});
 }
 
 double CrackGas::stable_dt() const {

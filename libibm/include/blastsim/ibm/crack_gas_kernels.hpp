@@ -546,7 +546,7 @@ struct MouthRateOf {
 //! What segment s holds when it holds gas, 0 otherwise (CrackGas::totals()): its mass, energy, products mass or
 //! volume, 1 (a count), 1 above the pressure `wet` (a count of wet segments), or its pressure.
 struct GasSegmentValue {
-  enum What { mass, energy, products_mass, volume, count, wet_count, pressure, density };
+  enum What { mass, energy, products_mass, volume, count, wet_count, pressure };
   CrackSegments<Access::read> seg;
   What what;
   double wet;  //!< [Pa] for wet_count
@@ -560,7 +560,6 @@ struct GasSegmentValue {
       case count: return 1.0;
       case wet_count: return seg.prim[s].p > wet ? 1.0 : 0.0;
       case pressure: return seg.prim[s].p;
-      case density: return seg.volume[s] > 0.0 ? seg.cons[s].m / seg.volume[s] : 0.0;
     }
     return 0.0;
   }
@@ -572,10 +571,16 @@ struct WallHeatOf {
   BLAST_HD double operator()(index_t s) const { return seg.wall_heat[s]; }
 };
 
-//! The density [kg/m3] of mouth J's reservoir when it is open, 0 otherwise (CrackGas::vacuum_density()).
-struct MouthDensityOf {
+//! The densities [kg/m3] the network touches, over one index space (CrackGas::vacuum_density(), one reduction):
+//! k < segments: segment k's gas (0 unless it holds gas); then junction k - segments's reservoir (0 unless open).
+struct DensestGasOf {
+  CrackSegments<Access::read> seg;
   CrackMouths<Access::read> mouths;
-  BLAST_HD double operator()(index_t J) const { return mouths.open[J] ? mouths.reservoir[J].rho : 0.0; }
+  index_t segments;
+  BLAST_HD double operator()(index_t k) const {
+    if (k >= segments) return mouths.open[k - segments] ? mouths.reservoir[k - segments].rho : 0.0;
+    return seg.kind[k] == kSegmentGas && seg.volume[k] > 0.0 ? seg.cons[k].m / seg.volume[k] : 0.0;
+  }
 };
 
 }  // namespace blastsim::ibm
