@@ -103,6 +103,8 @@ CrackGas::CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment
   copy_from_host(a.graph.junction_entry, ends.entry);
   a.geometry.length.assign(segments_, 1.0);
   a.geometry.aperture.assign(segments_, options_.residual_aperture);
+  a.geometry.axis_x.assign(segments_, 0.0);
+  a.geometry.axis_y.assign(segments_, 0.0);
   a.segments.volume.assign(segments_, options_.residual_aperture);
   a.segments.kind.assign(segments_, kSegmentNone);
   a.segments.cons.assign(segments_, ChannelConserved{0, 0, 0, 0, 0});
@@ -115,6 +117,9 @@ CrackGas::CrackGas(int junctions, const std::vector<std::array<int, 2>>& segment
   a.mouths.reservoir.assign(junctions_, ChannelPrimitive{0, 0, 0, 0, 0, 0, 0});
   a.mouths.reservoir_mass.assign(junctions_, std::numeric_limits<double>::infinity());
   a.deposits.deposit.assign(junctions_, ChannelConserved{0, 0, 0, 0, 0});
+  a.deposits.drawn.assign(junctions_, ChannelConserved{0, 0, 0, 0, 0});
+  a.deposits.momentum_x.assign(junctions_, 0.0);
+  a.deposits.momentum_y.assign(junctions_, 0.0);
 }
 
 CrackGas::~CrackGas() = default;
@@ -282,7 +287,7 @@ CrackSegmentFields CrackGas::segment_fields() const {
 
 std::vector<ChannelConserved> CrackGas::deposits() const { return to_host(a_->deposits.deposit); }
 void CrackGas::clear_deposits() {
-  fill_device("crack.clear_deposits", a_->deposits.deposit, ChannelConserved{0, 0, 0, 0, 0});
+  for_each_index("crack.clear_deposits", junctions_, ClearDepositsKernel{a_->deposits.view()});
 }
 
 //! The checkpoint holds the segments' state and geometry (the graph comes from the mesh; the ends and the

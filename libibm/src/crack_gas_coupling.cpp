@@ -22,6 +22,7 @@ BLASTSIM_CONST_STORAGE(CrackJunctionPlaces, BLASTSIM_CRACK_JUNCTION_PLACES)
 BLASTSIM_CONST_STORAGE(CrackSegmentParams, BLASTSIM_CRACK_SEGMENT_PARAMS)
 BLASTSIM_STATE_STORAGE(CrackMouthCells, BLASTSIM_CRACK_MOUTH_CELLS)
 BLASTSIM_STATE_STORAGE(CrackHandovers, BLASTSIM_CRACK_HANDOVERS)
+BLASTSIM_STATE_STORAGE(CrackHandoverCells, BLASTSIM_CRACK_HANDOVER_CELLS)
 BLASTSIM_STATE_STORAGE(CrackCushion, BLASTSIM_CRACK_CUSHION)
 BLASTSIM_STATE_STORAGE(CrackDepositOrder, BLASTSIM_CRACK_DEPOSIT_ORDER)
 BLASTSIM_STATE_STORAGE(CrackExchangeLedger, BLASTSIM_CRACK_EXCHANGE_LEDGER)
@@ -31,8 +32,9 @@ struct CrackCouplingArrays {
   CrackSegmentParamsArrays params;    // per segment
   CrackMouthCellsArrays mouth_cells;  // kMouthSamples per junction
   CrackHandoversArrays handovers;     // per segment
+  CrackHandoverCellsArrays handover_cells;  // kHandoverSamples per segment
   CrackCushionArrays cushion;         // per segment
-  CrackDepositOrderArrays order;      // per record: junctions, then segments
+  CrackDepositOrderArrays order;      // per record: the mouths' samples, then the hand-overs' points
   CrackExchangeLedgerArrays exchange; // per record
   CrackWallLedgerArrays walls;        // per segment
 };
@@ -68,11 +70,12 @@ CrackGasCoupling::CrackGasCoupling(const fdem::RockSolver& rock, const cip::GasM
   a_->mouth_cells.sharers.assign(kMouthSamples * static_cast<std::size_t>(junctions), 0);
   a_->mouth_cells.share.assign(kMouthSamples * static_cast<std::size_t>(junctions), ChannelConserved{0, 0, 0, 0, 0});
   a_->handovers.pending.assign(segments, 0);
-  a_->handovers.cell.assign(segments, -1);
+  a_->handovers.samples.assign(segments, 0);
+  a_->handover_cells.cell.assign(kHandoverSamples * static_cast<std::size_t>(segments), -1);
   a_->handovers.gas.assign(segments, ChannelConserved{0, 0, 0, 0, 0});
   a_->cushion.for_each([&](const char*, auto& v) { v.assign(segments, typename std::decay_t<decltype(v)>::value_type{}); });
-  const std::size_t records = kMouthSamples * static_cast<std::size_t>(junctions) + segments;
-  a_->exchange.to_grid.assign(records, ChannelConserved{0, 0, 0, 0, 0});
+  const std::size_t records = record_count();
+  a_->exchange.for_each([&](const char*, auto& v) { v.assign(records, typename std::decay_t<decltype(v)>::value_type{}); });
   a_->walls.for_each([&](const char*, auto& v) { v.assign(segments, 0.0); });
   a_->order.key.assign(records, 0);
   a_->order.record.assign(records, 0);
@@ -140,16 +143,20 @@ void CrackGasCoupling::update_geometry(CouplingContext& ctx) {
                                      crack_->vacuum_density()});
 }
 
+int CrackGasCoupling::record_count() const {
+  return kMouthSamples * crack_->junction_count() + kHandoverSamples * crack_->segment_count();
+}
+
 void CrackGasCoupling::sort_records(int records, int mouth_records) {
   for_each_index("ibm.crack.keys", records,
-                 CrackDepositKeyKernel{a_->mouth_cells.read(), a_->handovers.read(), a_->order.view(), mouth_records});
+                 CrackDepositKeyKernel{a_->mouth_cells.read(), a_->handover_cells.read(), a_->order.view(), mouth_records});
   fill_indices("ibm.crack.records", a_->order.record);
-  stable_sort_by_key("ibm.crack.sort", a_->order.key, a_->order.record, static_cast<index_t>(a_->order.key.size()));
+  stable_sort_by_key("ibm.crack.sort", a_->order.key, a_->order.record, static_cast<index_t>(records));
 }
 
 void CrackGasCoupling::after_gas(CouplingContext& ctx, double dt) {
-  const int ns = crack_->segment_count(), mouth_records = kMouthSamples * crack_->junction_count();
-  const int records = mouth_records + ns;
+  const int mouth_records = kMouthSamples * crack_->junction_count();
+  const int records = mouth_records;  // the mouths' samples alone: no hand-over has a cell before after_rock
   const cip::GasGrid g = ctx.gas.grid();
   // the mouths from the cells' new gas; the cells they share, sorted, set what each may draw over the step
   for_each_index("ibm.crack.mouths", crack_->junction_count(),
@@ -175,18 +182,22 @@ void CrackGasCoupling::before_rock_step(CouplingContext& ctx, int k, double dt) 
 
 void CrackGasCoupling::after_rock(CouplingContext& ctx) {
   const int ns = crack_->segment_count(), mouth_records = kMouthSamples * crack_->junction_count();
-  const int records = mouth_records + ns;
+  const int records = record_count();
   const cip::GasGrid g = ctx.gas.grid();
   // the hand-overs' cells; what the mouths gave the cells over the substeps and the hand-overs, summed per cell
-  // in sorted order
+  // in sorted order, put in the cells with its momentum (cip::CellDeposits)
   for_each_index("ibm.crack.handover_cells", ns,
                  HandoverCellKernel{ctx.rock.view(), g, ctx.gas.immersed_boundary().cell_active, crack_->segments(),
-                                    a_->handovers.view()});
+                                    a_->handovers.view(), a_->handover_cells.view()});
   sort_records(records, mouth_records);
+  if (!deposits_) deposits_ = std::make_unique<cip::CellDeposits>(g);
   for_each_index("ibm.crack.deposit", records,
                  CrackDepositKernel{a_->order.read(), a_->mouth_cells.read(), crack_->deposit_view(), a_->handovers.read(),
-                                    a_->exchange.view(), mouth_records, records, g.nx,
-                                    g.cell_area(), ctx.gas.cells()});
+                                    crack_->geometry(), a_->exchange.view(), deposits_->entries(records), mouth_records,
+                                    records});
+  deposits_->apply(ctx.gas);
+  for_each_index("ibm.crack.refused", records,
+                 CrackRefusedKernel{a_->order.read(), deposits_->entries(records), deposits_->last(), a_->exchange.view()});
   crack_->clear_deposits();
   for_each_index("ibm.crack.handover_clear", ns, HandoverClearKernel{a_->handovers.view()});
 }
@@ -234,7 +245,7 @@ void CrackGasCoupling::write_checkpoint(CheckpointWriter& w) const {
   write_array(w, "crack.handover_pending", a_->handovers.pending);
   write_array(w, "crack.handover_gas", a_->handovers.gas);
   a_->cushion.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.cushion.") + name, v); });
-  write_array(w, "crack.to_grid", a_->exchange.to_grid);
+  a_->exchange.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.exchange.") + name, v); });
   a_->walls.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.") + name, v); });
 }
 void CrackGasCoupling::read_checkpoint(CheckpointReader& r) {
@@ -243,7 +254,7 @@ void CrackGasCoupling::read_checkpoint(CheckpointReader& r) {
   read_array(r, "crack.handover_pending", a_->handovers.pending, n);
   read_array(r, "crack.handover_gas", a_->handovers.gas, n);
   a_->cushion.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.cushion.") + name, v, n); });
-  read_array(r, "crack.to_grid", a_->exchange.to_grid, a_->exchange.to_grid.size());
+  a_->exchange.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.exchange.") + name, v, record_count()); });
   a_->walls.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   for (const std::uint8_t p : to_host(a_->handovers.pending))
     if (p > 1) r.fail("crack.handover_pending", "holds a flag other than 0 or 1");

@@ -217,7 +217,7 @@ TEST_CASE("A mouth held to a share of its draw is a nozzle of that share of the 
   const ChannelPrimitive reservoir = channel_state(mat, 30.0, 0.0, mat.air.internal_energy(30.0, 5e6), 0.0, 0.0, 0.0);
   const ChannelPrimitive inside = channel_state(mat, 1.2, 0.0, mat.air.internal_energy(1.2, 1e5), 0.0, 0.0, 0.0);
   std::vector<int> segment_junction{0, 1}, offset{0, 1, 2}, entry{0, 1};
-  std::vector<double> length{L}, aperture{w}, volume{L * w};
+  std::vector<double> length{L}, aperture{w}, volume{L * w}, axis_x{1.0}, axis_y{0.0};
   std::vector<std::uint8_t> kind{kSegmentGas}, open{1, 0};
   std::vector<ChannelConserved> cons{at_rest(mat, 1.2, 1e5, L * w)};
   std::vector<ChannelPrimitive> prim{inside}, faces{inside, inside}, reservoirs{reservoir, reservoir};
@@ -226,16 +226,19 @@ TEST_CASE("A mouth held to a share of its draw is a nozzle of that share of the 
     std::vector<ChannelFlux> out(2, ChannelFlux{0, 0, 0, 0, 0});
     std::vector<double> area(2, 0.0);
     std::vector<ChannelConserved> deposit(2, ChannelConserved{0, 0, 0, 0, 0});
+    std::vector<ChannelConserved> drawn(2, ChannelConserved{0, 0, 0, 0, 0});
+    std::vector<double> momentum_x(2, 0.0), momentum_y(2, 0.0);
     const std::vector<double> wall_heat(1, 0.0);
     const JunctionFluxKernel k{mat,
                                CrackGraph{segment_junction.data(), offset.data(), entry.data()},
-                               CrackGeometry<Access::read>{length.data(), aperture.data()},
+                               CrackGeometry<Access::read>{length.data(), aperture.data(), axis_x.data(), axis_y.data()},
                                CrackSegments<Access::read>{kind.data(), cons.data(), volume.data(), prim.data(),
                                                            wall_heat.data()},
                                CrackMouths<Access::read>{open.data(), reservoirs.data(), mass.data()},
                                CrackEndStates<Access::read>{faces.data()},
                                CrackEndFluxes<Access::read_write>{out.data(), area.data()},
-                               CrackDeposits<Access::read_write>{deposit.data()},
+                               CrackDeposits<Access::read_write>{deposit.data(), drawn.data(), momentum_x.data(),
+                                                                 momentum_y.data()},
                                dt,
                                interval};
     k(0);

@@ -82,10 +82,10 @@ BLAST_HD inline PressureSound cell_pressure_and_sound_speed(const GasMaterials& 
 }
 
 
-//! What a cell holds, as the coupling moves gas between cells, into them or out of them: per unit area of
-//! the cell [kg/m3, J/m3] when gathered from cells (GasCells::own(), add_share()), per unit thickness [kg/m,
-//! J/m] when deposited (GasCells::deposit()). The products' volume fraction travels as alpha x mass, so a
-//! mix of several contents takes their mass-weighted mean fraction.
+//! What a cell holds, as the coupling moves gas between cells: per unit area of the cell [kg/m3, J/m3]
+//! (GasCells::own(), add_share(), replace(); what a coupling gives cells from outside the grid is a CellDeposit,
+//! deposit_kernels.hpp). The products' volume fraction travels as alpha x mass, so a mix of several contents takes
+//! their mass-weighted mean fraction.
 struct CellContent {
   double mass;           //!< rho
   double energy;         //!< rho e, and whatever kinetic energy the giver hands on
@@ -141,26 +141,6 @@ struct GasCellsOf {
     s.e.f(i, j) = c.energy / c.mass, s.e.gx(i, j) = 0.0, s.e.gy(i, j) = 0.0;
     if (two) m.alpha(i, j) = c.alpha_mass / c.mass;
     if (traced) m.m1(i, j) = c.products_mass;
-  }
-  //! Adds `add` (per unit thickness: mass [kg/m], energy [J/m], products mass, alpha x mass) to cell (i, j) of
-  //! area `area` [m2]; its faces keep their velocities and its derivatives their values. The faces' kinetic
-  //! energy changes with the cell's mass (each face carries the mean mass of its two cells: a quarter of the
-  //! added mass times the sum of the four faces' u^2, GasTotals' measure), so the cell's internal energy takes
-  //! the added energy less that change: the gas's total energy grows by exactly add.energy. Where the change
-  //! would take more than half of the cell's internal energy (a large deposit into fast-moving gas), half is
-  //! taken and the rest counted in the positivity ledger, a source of the energy budget.
-  BLAST_HD void deposit(int i, int j, const CellContent& add, double area) const {
-    const double m_old = s.rho.f(i, j) * area, m_new = m_old + add.mass;
-    const double u0 = s.u.f(i, j), u1 = s.u.f(i + 1, j), v0 = s.v.f(i, j), v1 = s.v.f(i, j + 1);
-    const double kinetic = 0.25 * add.mass * (u0 * u0 + u1 * u1 + v0 * v0 + v1 * v1);
-    const double internal = s.e.f(i, j) * m_old + add.energy;
-    const double taken = kinetic > 0.5 * internal && internal > 0.0 ? 0.5 * internal : kinetic;
-    positivity_heat(i, j) += (kinetic - taken) / area;
-    const double E_new = internal - taken;
-    s.rho.f(i, j) = m_new / area;
-    s.e.f(i, j) = E_new / m_new;
-    if (two) m.alpha(i, j) = (m.alpha(i, j) * m_old + add.alpha_mass) / m_new;
-    if (traced) m.m1(i, j) += add.products_mass / area;
   }
   //! Fills cell (i, j) with one material at density rho [kg/m3] and specific internal energy e [J/kg], its
   //! derivatives zero (GasPhase::products needs a run with products); air holds no traced gas.

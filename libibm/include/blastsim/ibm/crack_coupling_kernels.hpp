@@ -5,6 +5,7 @@
 //! CrackGasCoupling (crack_gas_coupling.hpp) launches them. Plain header: no backend dependency.
 #pragma once
 
+#include "blastsim/cip/deposit_kernels.hpp"
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/cip/gas_state.hpp"
 #include "blastsim/cip/grid.hpp"
@@ -38,9 +39,14 @@ inline constexpr int kMouthSamples = 3;
   X(int, sharers, "how many mouth samples (of all junctions) open into that cell")                            \
   X(ChannelConserved, share, "the sample's share of its junction's deposit, per quantity (q unused)")
 #define BLASTSIM_CRACK_HANDOVERS(X)                                                                  \
-  X(std::uint8_t, pending, "1: the segment handed its gas over; it goes to a cell in after_gas")  \
+  X(std::uint8_t, pending, "1: the segment handed its gas over; it goes to its gap's cells in after_rock") \
   X(ChannelConserved, gas, "the gas it hands over")                                                  \
-  X(int, cell, "the cell i + nx j the handed gas goes to in this step, or -1")
+  X(int, samples, "how many of its kHandoverSamples points found a cell in this step (0: none)")
+//! A segment hands its gas to the grid at kHandoverSamples points of its gap (four along it, two across), in
+//! equal shares, so that a gap several cells long and wide does not receive it in one cell.
+inline constexpr int kHandoverAlong = 4, kHandoverAcross = 2, kHandoverSamples = kHandoverAlong * kHandoverAcross;
+#define BLASTSIM_CRACK_HANDOVER_CELLS(X) \
+  X(int, cell, "per segment kHandoverSamples cells i + nx j its handed gas goes to in this step (-1: none), segment-major")
 //! Where a crack's faces stood when its cushion last set their load (CrackCushionKernel): the four nodes at the
 //! ledger positions x - v dt / 2 [m], and each face's outward normal scaled by its length [m] at the positions x
 //! the rock's step computes the load from.
@@ -60,7 +66,12 @@ namespace blastsim::ibm {
   X(CushionFaces, faces, "where the faces stood when that load was set")
 //! Cumulative ledgers (checkpointed): per deposit record what it gave the grid's cells, per segment the work its
 //! gas did on the crack's walls (docs/coupling.md "Energy budget with crack gas").
-#define BLASTSIM_CRACK_EXCHANGE_LEDGER(X) X(ChannelConserved, to_grid, "per record: gas given to the cells since the start")
+#define BLASTSIM_CRACK_EXCHANGE_LEDGER(X)                                                                      \
+  X(ChannelConserved, to_grid, "per record: gas given to the cells since the start (q unused)")                 \
+  X(double, momentum_x, "per record: x momentum [kg/s] of the gas given to the cells since the start")         \
+  X(double, momentum_y, "per record: y momentum [kg/s] of the gas given to the cells since the start")         \
+  X(double, refused_x, "per record: x momentum [kg/s] its cell had no free face to take (on the walls)")        \
+  X(double, refused_y, "per record: y momentum [kg/s] its cell had no free face to take (on the walls)")
 #define BLASTSIM_CRACK_WALL_LEDGER(X)                                                                   \
   X(double, wall_work, "per segment: work [J/m] of its gas on the walls since the start")              \
   X(double, unpaid_work, "per segment: work [J/m] its loads did on the rock beyond what its gas paid")
@@ -72,6 +83,7 @@ BLASTSIM_CONST_GROUP(CrackJunctionPlaces, BLASTSIM_CRACK_JUNCTION_PLACES)
 BLASTSIM_CONST_GROUP(CrackSegmentParams, BLASTSIM_CRACK_SEGMENT_PARAMS)
 BLASTSIM_VIEW_GROUP(CrackMouthCells, BLASTSIM_CRACK_MOUTH_CELLS)
 BLASTSIM_VIEW_GROUP(CrackHandovers, BLASTSIM_CRACK_HANDOVERS)
+BLASTSIM_VIEW_GROUP(CrackHandoverCells, BLASTSIM_CRACK_HANDOVER_CELLS)
 BLASTSIM_VIEW_GROUP(CrackCushion, BLASTSIM_CRACK_CUSHION)
 BLASTSIM_VIEW_GROUP(CrackDepositOrder, BLASTSIM_CRACK_DEPOSIT_ORDER)
 BLASTSIM_VIEW_GROUP(CrackExchangeLedger, BLASTSIM_CRACK_EXCHANGE_LEDGER)
@@ -256,6 +268,10 @@ struct CrackGeometryKernel {
     const CrackWidth cw = segment_width(rock, params, s, f, seg.prim[s].p, residual_aperture);
     const double L = 0.5 * (f.la + f.lb), w = cw.w, V = L * w;
     geo.length[s] = L, geo.aperture[s] = w;
+    // the axis from end 0 (nodes a0, b1) to end 1 (a1, b0): the direction of the segment's momentum
+    const double ax = f.a1.x + f.b0.x - f.a0.x - f.b1.x, ay = f.a1.y + f.b0.y - f.a0.y - f.b1.y;
+    const double alen = sqrt(ax * ax + ay * ay);
+    geo.axis_x[s] = alen > 0.0 ? ax / alen : 0.0, geo.axis_y[s] = alen > 0.0 ? ay / alen : 0.0;
     const std::uint8_t kind = seg.kind[s];
     const bool loaded = cushion.on[s] != 0;
     cushion.on[s] = 0;
@@ -461,26 +477,41 @@ struct MouthHeldGasKernel {
   }
 };
 
-//! The cell each segment's handed gas goes to (one thread per segment, after the rock's substeps): the active cell
-//! nearest to the middle of its gap (3 x 3 block); -1 for a segment that handed nothing. A segment whose gap
-//! opened no active cell (rare: other rock over it) takes its gas back and stays a gas segment.
+//! The cells each segment's handed gas goes to (one thread per segment, after the rock's substeps): at each of
+//! kHandoverSamples points of its gap (kHandoverAlong along it, at the middles of equal parts, times
+//! kHandoverAcross across it, at the middles of equal parts from face A to face B) the nearest active cell
+//! (3 x 3 block), or -1; the segment's gas goes to them in equal shares (two points in one cell: two shares). A
+//! segment whose gap opened no active cell (rare: other rock over it) takes its gas back and stays a gas
+//! segment.
 struct HandoverCellKernel {
   fdem::RockView rock;
   cip::GasGrid g;
   Field2D<const std::uint8_t> active;
   CrackSegments<Access::read_write> seg;
   CrackHandovers<Access::read_write> handovers;
+  CrackHandoverCells<Access::read_write> cells;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    handovers.cell[s] = -1;
+    for (int k = 0; k < kHandoverSamples; ++k) cells.cell[kHandoverSamples * s + k] = -1;
+    handovers.samples[s] = 0;
     if (!handovers.pending[s]) return;
     const JointFaces f = joint_faces(rock, s);
-    const double x = 0.25 * (f.a0.x + f.a1.x + f.b0.x + f.b1.x), y = 0.25 * (f.a0.y + f.a1.y + f.b0.y + f.b1.y);
-    int fi = -1, fj = -1;
-    if (nearest_active_cell(g, active, x, y, fi, fj)) {
-      handovers.cell[s] = fj * g.nx + fi;
-      return;
+    int found = 0;
+    for (int a = 0; a < kHandoverAlong; ++a) {
+      const double t = (a + 0.5) / kHandoverAlong;
+      // face A from a0 to a1; face B runs the other way (b1 faces a0)
+      const double ax = f.a0.x + t * (f.a1.x - f.a0.x), ay = f.a0.y + t * (f.a1.y - f.a0.y);
+      const double bx = f.b1.x + t * (f.b0.x - f.b1.x), by = f.b1.y + t * (f.b0.y - f.b1.y);
+      for (int c = 0; c < kHandoverAcross; ++c) {
+        const double r = (c + 0.5) / kHandoverAcross;
+        int fi = -1, fj = -1;
+        if (!nearest_active_cell(g, active, ax + r * (bx - ax), ay + r * (by - ay), fi, fj)) continue;
+        cells.cell[kHandoverSamples * s + kHandoverAcross * a + c] = fj * g.nx + fi;
+        ++found;
+      }
     }
+    handovers.samples[s] = found;
+    if (found > 0) return;
     // (a crack that closed back below the hand-over gap within the step is a gas segment again and may hold gas
     // its neighbours gave it since: the hand-over is added to it)
     const ChannelConserved h = handovers.gas[s];
@@ -502,60 +533,97 @@ struct HandoverClearKernel {
   CrackHandovers<Access::read_write> handovers;
   BLAST_HD void operator()(index_t si) const {
     const int s = static_cast<int>(si);
-    if (handovers.cell[s] < 0) return;
-    handovers.pending[s] = 0, handovers.gas[s] = {0, 0, 0, 0, 0}, handovers.cell[s] = -1;
+    if (handovers.samples[s] == 0) return;
+    handovers.pending[s] = 0, handovers.gas[s] = {0, 0, 0, 0, 0}, handovers.samples[s] = 0;
   }
 };
 
 //! The cell key of every deposit record (0 .. kMouthSamples x junctions - 1: the mouths' cells, then the
-//! segments' hand-overs; a record without a cell sorts last).
+//! segments' hand-over points, kHandoverSamples a segment; a record without a cell sorts last).
 struct CrackDepositKeyKernel {
   CrackMouthCells<Access::read> mouth_cells;
-  CrackHandovers<Access::read> handovers;
+  CrackHandoverCells<Access::read> handover_cells;
   CrackDepositOrder<Access::read_write> order;  //!< writes key
   int mouth_records;  //!< kMouthSamples x junctions
   BLAST_HD void operator()(index_t k) const {
-    const int c = k < mouth_records ? mouth_cells.cell[k] : handovers.cell[k - mouth_records];
+    const int c = k < mouth_records ? mouth_cells.cell[k] : handover_cells.cell[k - mouth_records];
     order.key[k] = c < 0 ? 0x7fffffff : c;
   }
 };
 
-//! What deposit record `rec` gives its cell: a mouth cell its share of its junction's deposit (CrackMouthKernel),
-//! a segment its hand-over.
-BLAST_HD inline ChannelConserved deposit_record(const CrackMouthCells<Access::read>& mouth_cells,
+//! What deposit record `rec` gives its cell (cell left unset): a mouth cell its share of its junction's deposit,
+//! of the gas that left the cracks (and its momentum) in proportion to its mass share (one gas: each cell takes
+//! it at its own specific energy and fractions), of the gas drawn from it in proportion to its own content of
+//! each quantity (CrackMouthKernel's shares); a hand-over point its equal share of its segment's gas, the axial
+//! momentum q along the segment's axis.
+BLAST_HD inline cip::CellDeposit deposit_record(const CrackMouthCells<Access::read>& mouth_cells,
                                                 const CrackDeposits<Access::read>& deposits,
-                                                const CrackHandovers<Access::read>& handovers, int mouth_records, int rec) {
-  if (rec >= mouth_records) return handovers.gas[rec - mouth_records];
-  const ChannelConserved d = deposits.deposit[rec / kMouthSamples], f = mouth_cells.share[rec];
-  return {d.m * f.m, 0.0, d.E * f.E, d.m1 * f.m1, d.am * f.am};
+                                                const CrackHandovers<Access::read>& handovers,
+                                                const CrackGeometry<Access::read>& geo, int mouth_records, int rec) {
+  if (rec >= mouth_records) {
+    const int s = (rec - mouth_records) / kHandoverSamples;
+    const ChannelConserved h = handovers.gas[s];
+    const double share = 1.0 / handovers.samples[s];
+    return {-1, share * h.m, 0.0, share * h.q * geo.axis_x[s], share * h.q * geo.axis_y[s], share * h.E,
+            share * h.m1, share * h.am};
+  }
+  const int J = rec / kMouthSamples;
+  const ChannelConserved d = deposits.deposit[J], dr = deposits.drawn[J], f = mouth_cells.share[rec];
+  return {-1,
+          (d.m - dr.m) * f.m,
+          dr.m * f.m,
+          deposits.momentum_x[J] * f.m,
+          deposits.momentum_y[J] * f.m,
+          (d.E - dr.E) * f.m + dr.E * f.E,
+          (d.m1 - dr.m1) * f.m + dr.m1 * f.m1,
+          (d.am - dr.am) * f.m + dr.am * f.am};
 }
 
-//! Adds the cracks' deposits to their cells (one thread per run of equal cell keys in the sorted records: the
-//! first of the run sums them in sorted order, so the bytes do not depend on the thread schedule). Records
-//! 0 .. kMouthSamples x junctions - 1 are the mouths' cells (deposit_record()), the rest the segments' hand-overs. The deposited energy is
-//! internal energy of the cell (the cell's faces keep their velocities).
+//! What the cracks give each cell, as the grid's deposit entries (cip::CellDeposits; one thread per sorted
+//! position: the first of a run of equal cell keys sums the run's records in sorted order, so the bytes do not
+//! depend on the thread schedule; the other positions give nothing). Records 0 .. kMouthSamples x junctions - 1
+//! are the mouths' cells, the rest the segments' hand-over points (deposit_record()). Each record's share goes to
+//! its ledger.
 struct CrackDepositKernel {
   CrackDepositOrder<Access::read> order;  //!< sorted cell keys (INT_MAX: none), the record of each sorted position
   CrackMouthCells<Access::read> mouth_cells;
   CrackDeposits<Access::read> deposits;
   CrackHandovers<Access::read> handovers;
+  CrackGeometry<Access::read> geo;
   CrackExchangeLedger<Access::read_write> ledger;
-  int mouth_records, records, nx;
-  double cell_area;
-  cip::GasCells cells;
+  cip::CellDepositList<Access::read_write> entries;  //!< one per sorted position
+  int mouth_records, records;
   BLAST_HD void operator()(index_t ki) const {
     const int k = static_cast<int>(ki);
     const int c = order.key[k];
-    if (c == 0x7fffffff || (k > 0 && order.key[k - 1] == c)) return;
-    ChannelConserved sum{0, 0, 0, 0, 0};
-    for (int r = k; r < records && order.key[r] == c; ++r) {
-      const int rec = order.record[r];
-      const ChannelConserved d = deposit_record(mouth_cells, deposits, handovers, mouth_records, rec);
-      sum.m += d.m, sum.E += d.E, sum.m1 += d.m1, sum.am += d.am;
-      ChannelConserved& l = ledger.to_grid[rec];
-      l.m += d.m, l.E += d.E, l.m1 += d.m1, l.am += d.am;
+    cip::CellDeposit sum{-1, 0, 0, 0, 0, 0, 0, 0};
+    if (c != 0x7fffffff && (k == 0 || order.key[k - 1] != c)) {
+      sum.cell = c;
+      for (int r = k; r < records && order.key[r] == c; ++r) {
+        const int rec = order.record[r];
+        const cip::CellDeposit d = deposit_record(mouth_cells, deposits, handovers, geo, mouth_records, rec);
+        sum.given += d.given, sum.drawn += d.drawn, sum.px += d.px, sum.py += d.py, sum.energy += d.energy;
+        sum.products_mass += d.products_mass, sum.alpha_mass += d.alpha_mass;
+        ChannelConserved& l = ledger.to_grid[rec];
+        l.m += d.given + d.drawn, l.E += d.energy, l.m1 += d.products_mass, l.am += d.alpha_mass;
+        ledger.momentum_x[rec] += d.px, ledger.momentum_y[rec] += d.py;
+      }
     }
-    cells.deposit(c % nx, c / nx, cip::CellContent{sum.m, sum.E, sum.m1, sum.am}, cell_area);
+    entries.entry[k] = sum;
+  }
+};
+
+//! The momentum each cell had no free face to take (cip::CellDeposits::last()), booked to the first record of
+//! its run (one thread per sorted position).
+struct CrackRefusedKernel {
+  CrackDepositOrder<Access::read> order;
+  cip::CellDepositList<Access::read> entries;
+  cip::CellDepositScratch<Access::read> last;
+  CrackExchangeLedger<Access::read_write> ledger;
+  BLAST_HD void operator()(index_t k) const {
+    if (entries.entry[k].cell < 0) return;
+    const int rec = order.record[k];
+    ledger.refused_x[rec] += last.refused_x[k], ledger.refused_y[rec] += last.refused_y[k];
   }
 };
 

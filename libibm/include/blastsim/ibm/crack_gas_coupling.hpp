@@ -5,6 +5,7 @@
 //! its channel's pressure; a crack whose face meets the grid gas hands its gas to the grid.
 #pragma once
 
+#include "blastsim/cip/cell_deposits.hpp"
 #include "blastsim/ibm/coupling_process.hpp"
 #include "blastsim/ibm/crack_coupling_kernels.hpp"
 #include "blastsim/ibm/crack_gas.hpp"
@@ -93,8 +94,11 @@ class CrackGasCoupling : public CouplingProcess {
   void update_geometry(CouplingContext& ctx);
   //! The deposit records' cell keys, sorted (records: the mouths' samples, then the segments).
   void sort_records(int records, int mouth_records);
+  //! The deposit records: kMouthSamples a junction, then kHandoverSamples a segment.
+  int record_count() const;
   double interval_ = 0;  //!< [s] the coupled step the rock's substeps fill (after_gas())
   std::unique_ptr<detail::CrackCouplingArrays> a_;
+  std::unique_ptr<cip::CellDeposits> deposits_;  //!< the grid's deposit entries (made with the grid, in after_rock)
 };
 
 }  // namespace blastsim::ibm

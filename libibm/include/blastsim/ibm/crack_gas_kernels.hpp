@@ -237,9 +237,11 @@ BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat,
   X(int, junction_offset, "per junction (+1): start of its entries")             \
   X(int, junction_entry, "the ends at each junction, ascending")
 //! Per segment, set from the rock every step (or by CrackGas::set_geometry()).
-#define BLASTSIM_CRACK_GEOMETRY(X)          \
-  X(double, length, "length L [m]")          \
-  X(double, aperture, "aperture w [m]")
+#define BLASTSIM_CRACK_GEOMETRY(X)                                                        \
+  X(double, length, "length L [m]")                                                        \
+  X(double, aperture, "aperture w [m]")                                                    \
+  X(double, axis_x, "x component of the unit vector from end 0 to end 1 (0 0: a network without places)") \
+  X(double, axis_y, "its y component")
 //! Per segment: what evolves.
 #define BLASTSIM_CRACK_SEGMENTS(X)                                                     \
   X(std::uint8_t, kind, "CrackSegmentKind")                                            \
@@ -257,8 +259,13 @@ BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat,
   X(std::uint8_t, open, "1: opens into a gas reservoir (a grid cell)")                 \
   X(ChannelPrimitive, reservoir, "the reservoir's state (at rest)")                    \
   X(double, reservoir_mass, "the gas [kg/m] the reservoir holds (infinity: unlimited)")
-//! Per junction: what went into its reservoir since the last clear (mass, energy, products).
-#define BLASTSIM_CRACK_DEPOSITS(X) X(ChannelConserved, deposit, "m, E, m1, am [per m of thickness]")
+//! Per junction: what went into its reservoir since the last clear (mass, energy, products; the part of it drawn
+//! from it; the momentum of the gas that left the cracks, along each end's axis out of its segment).
+#define BLASTSIM_CRACK_DEPOSITS(X)                                                                          \
+  X(ChannelConserved, deposit, "net m, E, m1, am [per m of thickness] (q unused)")                          \
+  X(ChannelConserved, drawn, "what the cracks drew from the reservoir (<= 0; part of deposit; q unused)")    \
+  X(double, momentum_x, "x momentum [kg/s] of the gas that left the cracks into the reservoir")             \
+  X(double, momentum_y, "y momentum [kg/s] of the gas that left the cracks into the reservoir")
 
 BLASTSIM_CONST_GROUP(CrackGraph, BLASTSIM_CRACK_GRAPH)
 BLASTSIM_VIEW_GROUP(CrackGeometry, BLASTSIM_CRACK_GEOMETRY)
@@ -386,6 +393,8 @@ struct JunctionFluxKernel {
     if (mouths.open[J]) {
       const ChannelPrimitive r = mouths.reservoir[J];
       ChannelConserved dep = deposits.deposit[J];
+      ChannelConserved dep_drawn = deposits.drawn[J];
+      double dep_px = deposits.momentum_x[J], dep_py = deposits.momentum_y[J];
       double drawn = 0.0;  // [kg/(m s)] the nozzles' inflow from the reservoir
       for (int a = 0; a < k; ++a) {
         const ChannelPrimitive s = inward(ends[a]);
@@ -398,7 +407,8 @@ struct JunctionFluxKernel {
         const double w = geo.aperture[end / 2];
         const ChannelPrimitive s = inward(end);
         ChannelFlux o{0, 0, 0, 0, 0};
-        double area = w;  // [m] of the end's flux
+        double area = w;        // [m] of the end's flux
+        double exit_speed = 0;  // [m/s] of the gas leaving the crack, along its axis out of the segment
         if (r.p > s.p) {  // into the crack from the reservoir at rest
           // Held to `scale` of its draw, the nozzle is one of width scale w: mass, momentum (its pressure term
           // too) and energy all scale, so the gas enters at the nozzle's own state. Scaling the mass alone left
@@ -410,20 +420,29 @@ struct JunctionFluxKernel {
           area = scale * w;
         } else if (!is_vacuum(s) && s.u >= s.c) {  // out of the crack at its own supersonic speed: no nozzle
           o = scaled(physical_flux(s), w);
+          exit_speed = s.u;
         } else if (!is_vacuum(s)) {  // out of the crack from its stagnation state
           const double kx = s.rho * s.c * s.c / s.p;
           const double M = s.u > 0 ? s.u / s.c : 0.0, T = 1.0 + 0.5 * (kx - 1.0) * M * M;
           const NozzleFlow nf = nozzle_flow(s.rho * pow(T, 1.0 / (kx - 1.0)), s.p * pow(T, kx / (kx - 1.0)), kx, r.p);
           const double h0 = (s.Edens + s.p) / s.rho;
           o = {nf.G * w, (nf.G * nf.u + nf.p) * w, nf.G * h0 * w, nf.G * s.Y * w, nf.G * s.alpha * w};
+          exit_speed = nf.u;
         } else {
           o = {0, s.p * w, 0, 0, 0};
         }
         fluxes.out[end] = o;
         fluxes.end_area[end] = area;
         dep.m += dt * o.m, dep.E += dt * o.E, dep.m1 += dt * o.m1, dep.am += dt * o.am;
+        if (o.m < 0.0)
+          dep_drawn = {dep_drawn.m + dt * o.m, 0.0, dep_drawn.E + dt * o.E, dep_drawn.m1 + dt * o.m1, dep_drawn.am + dt * o.am};
+        // the leaving gas's momentum, its mass flux times its speed along the end's axis out of the segment (the
+        // pressure term of the end's momentum flux acts on the walls and the reservoir, and moves nothing)
+        const double out = (end % 2 == 1 ? 1.0 : -1.0) * dt * (o.m > 0.0 ? o.m * exit_speed : 0.0);
+        dep_px += out * geo.axis_x[end / 2], dep_py += out * geo.axis_y[end / 2];
       }
       deposits.deposit[J] = dep;
+      deposits.drawn[J] = dep_drawn, deposits.momentum_x[J] = dep_px, deposits.momentum_y[J] = dep_py;
       return;
     }
     if (k == 1) {
@@ -444,6 +463,15 @@ struct JunctionFluxKernel {
         area[a] += A, area[b] += A;
       }
     for (int a = 0; a < k; ++a) fluxes.out[ends[a]] = acc[a], fluxes.end_area[ends[a]] = area[a];
+  }
+};
+
+//! Empties every junction's deposit (one thread per junction).
+struct ClearDepositsKernel {
+  CrackDeposits<Access::read_write> deposits;
+  BLAST_HD void operator()(index_t J) const {
+    deposits.deposit[J] = {0, 0, 0, 0, 0};
+    deposits.drawn[J] = {0, 0, 0, 0, 0}, deposits.momentum_x[J] = 0.0, deposits.momentum_y[J] = 0.0;
   }
 };
 

@@ -139,7 +139,7 @@ struct EdgeWorkKernel {
 //! GasLoad::edge_pressures_paid: each cell pays the work of the edges it loaded (EdgeWorkKernel), one thread per
 //! position of the slots sorted by cell (stable: slot order within a cell), the first of a cell's run summing it
 //! in that order (deterministic, no atomics). The work leaves the cell's internal energy; where it would take
-//! more than half of it, half is taken and the rest counted in the positivity ledger (as cip::GasCells::deposit()
+//! more than half of it, half is taken and the rest counted in the positivity ledger (as cip::DepositCellKernel
 //! does), a source of the energy budget.
 struct EdgeWorkChargeKernel {
   EdgeWork<Access::read> ew;  // key (sorted), record (the slot at each sorted position), work
