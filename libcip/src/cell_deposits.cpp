@@ -54,5 +54,6 @@ void CellDeposits::apply(GasSolver& gas) {
 }
 
 CellDepositScratch<Access::read> CellDeposits::last() const { return a_->scratch.read(); }
+CellDepositList<Access::read> CellDeposits::list() const { return a_->list.read(); }
 
 }  // namespace blastsim::cip

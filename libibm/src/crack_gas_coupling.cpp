@@ -197,7 +197,7 @@ void CrackGasCoupling::after_rock(CouplingContext& ctx) {
                                     records});
   deposits_->apply(ctx.gas);
   for_each_index("ibm.crack.refused", records,
-                 CrackRefusedKernel{a_->order.read(), deposits_->entries(records), deposits_->last(), a_->exchange.view()});
+                 CrackRefusedKernel{a_->order.read(), deposits_->list(), deposits_->last(), a_->exchange.view()});
   crack_->clear_deposits();
   for_each_index("ibm.crack.handover_clear", ns, HandoverClearKernel{a_->handovers.view()});
 }

@@ -35,6 +35,8 @@ class CellDeposits {
   void apply(GasSolver& gas);
   //! Per entry of the last apply(): the momentum [kg/s] its cell had no free face to take.
   CellDepositScratch<Access::read> last() const;
+  //! The entries of the last entries(n), read-only.
+  CellDepositList<Access::read> list() const;
 
  private:
   GasGrid grid_;
