@@ -85,7 +85,7 @@ double GasRockCoupler::ambient_pressure() const {
 CouplingContext GasRockCoupler::context() const {
   double margin = 0.0;
   for (const auto& p : processes_) margin = std::max(margin, p->owner_margin(gas_.grid()));
-  return {gas_, rock_, ambient_, ambient_pressure(), immersed_->owners(), !masks_set_, margin};
+  return {gas_, rock_, ambient_, ambient_pressure(), immersed_->owners(), immersed_->claims(), !masks_set_, margin};
 }
 
 void GasRockCoupler::rock_to_gas() {

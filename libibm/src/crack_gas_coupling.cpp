@@ -71,6 +71,7 @@ CrackGasCoupling::CrackGasCoupling(const fdem::RockSolver& rock, const cip::GasM
   a_->mouth_cells.share.assign(kMouthSamples * static_cast<std::size_t>(junctions), ChannelConserved{0, 0, 0, 0, 0});
   a_->handovers.pending.assign(segments, 0);
   a_->handovers.samples.assign(segments, 0);
+  a_->handovers.reverted.assign(segments, 0);
   a_->handover_cells.cell.assign(kHandoverSamples * static_cast<std::size_t>(segments), -1);
   a_->handovers.gas.assign(segments, ChannelConserved{0, 0, 0, 0, 0});
   a_->cushion.for_each([&](const char*, auto& v) { v.assign(segments, typename std::decay_t<decltype(v)>::value_type{}); });
@@ -113,6 +114,7 @@ HandoverGaps CrackGasCoupling::handover_gaps(const cip::GasGrid& g) const {
 void CrackGasCoupling::run(Stage stage, CouplingContext& ctx, const StageStep& step) {
   switch (stage) {
     case Stage::cover: return cover(ctx);
+    case Stage::after_cells: return after_cells(ctx);
     case Stage::after_gas: return after_gas(ctx, step.dt);
     case Stage::before_rock_step: return before_rock_step(ctx, step.substep, step.dt);
     case Stage::after_rock: return after_rock(ctx);
@@ -131,7 +133,14 @@ void CrackGasCoupling::report(const CouplingDiagnostics& d, CsvRecord& o) const 
 void CrackGasCoupling::cover(CouplingContext& ctx) {
   update_geometry(ctx);
   for_each_index("ibm.crack.gap_cover", crack_->segment_count(),
-                 CrackGapCoverKernel{ctx.rock.view(), ctx.gas.grid(), crack_->segments(), ctx.owners});
+                 CrackGapCoverKernel{ctx.rock.view(), ctx.gas.grid(), crack_->segments(), a_->handovers.read(),
+                                     ctx.owners, ctx.claims.claim});
+}
+
+void CrackGasCoupling::after_cells(CouplingContext& ctx) {
+  for_each_index("ibm.crack.claimed_gas", crack_->segment_count(),
+                 CrackClaimedGasKernel{ctx.rock.view(), ctx.gas.grid(), crack_->segments(), a_->handovers.view(), a_->walls.view(),
+                                       ctx.claims.claim, ctx.claims.taken});
 }
 
 void CrackGasCoupling::update_geometry(CouplingContext& ctx) {
@@ -234,9 +243,13 @@ void CrackGasCoupling::add_diagnostics(const CouplingContext& ctx, CouplingDiagn
                                     FieldOf<ChannelConserved>{given, &ChannelConserved::m});
   d.crack.to_grid_energy = reduce_sum("ibm.crack.to_grid_energy", records, 0.0,
                                       FieldOf<ChannelConserved>{given, &ChannelConserved::E});
-  d.crack.wall_work = reduce_sum("ibm.crack.wall_work", crack_->segment_count(), 0.0, WallWorkOf{a_->walls.read(), false});
-  d.crack.unpaid_work =
-      reduce_sum("ibm.crack.unpaid_work", crack_->segment_count(), 0.0, WallWorkOf{a_->walls.read(), true});
+  auto walls = [&](const char* label, WallLedgerOf::Entry e) {
+    return reduce_sum(label, crack_->segment_count(), 0.0, WallLedgerOf{a_->walls.read(), e});
+  };
+  d.crack.wall_work = walls("ibm.crack.wall_work", WallLedgerOf::Entry::wall_work);
+  d.crack.unpaid_work = walls("ibm.crack.unpaid_work", WallLedgerOf::Entry::unpaid_work);
+  d.crack.from_cells_mass = walls("ibm.crack.taken_mass", WallLedgerOf::Entry::taken_mass);
+  d.crack.from_cells_energy = walls("ibm.crack.taken_energy", WallLedgerOf::Entry::taken_energy);
   d.energy_held += d.crack.energy + d.crack.wall_heat;  // the walls' heat went into the rock (not modelled there)
 }
 
@@ -244,6 +257,7 @@ void CrackGasCoupling::write_checkpoint(CheckpointWriter& w) const {
   crack_->write_checkpoint(w);
   write_array(w, "crack.handover_pending", a_->handovers.pending);
   write_array(w, "crack.handover_gas", a_->handovers.gas);
+  write_array(w, "crack.handover_reverted", a_->handovers.reverted);
   a_->cushion.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.cushion.") + name, v); });
   a_->exchange.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.exchange.") + name, v); });
   a_->walls.for_each([&](const char* name, const auto& v) { write_array(w, std::string("crack.") + name, v); });
@@ -253,11 +267,14 @@ void CrackGasCoupling::read_checkpoint(CheckpointReader& r) {
   const auto n = static_cast<std::size_t>(crack_->segment_count());
   read_array(r, "crack.handover_pending", a_->handovers.pending, n);
   read_array(r, "crack.handover_gas", a_->handovers.gas, n);
+  read_array(r, "crack.handover_reverted", a_->handovers.reverted, n);
   a_->cushion.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.cushion.") + name, v, n); });
   a_->exchange.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.exchange.") + name, v, record_count()); });
   a_->walls.for_each([&](const char* name, auto& v) { read_array(r, std::string("crack.") + name, v, n); });
   for (const std::uint8_t p : to_host(a_->handovers.pending))
     if (p > 1) r.fail("crack.handover_pending", "holds a flag other than 0 or 1");
+  for (const std::uint8_t p : to_host(a_->handovers.reverted))
+    if (p > 1) r.fail("crack.handover_reverted", "holds a flag other than 0 or 1");
 }
 
 }  // namespace blastsim::ibm

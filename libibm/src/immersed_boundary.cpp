@@ -14,10 +14,12 @@ namespace blastsim::ibm {
 namespace detail {
 BLASTSIM_FIELD_STORAGE(FaceOwners, BLASTSIM_IBM_FACE_OWNERS)
 BLASTSIM_FIELD_STORAGE(CellUpdate, BLASTSIM_IBM_CELL_UPDATE)
+BLASTSIM_FIELD_STORAGE(CellClaims, BLASTSIM_IBM_CELL_CLAIMS)
 BLASTSIM_STATE_STORAGE(ImmersedLedger, BLASTSIM_IBM_LEDGER)
 struct ImmersedBoundaryArrays {
   FaceOwnersArrays owners;  // padded shape
   CellUpdateArrays update;  // padded shape
+  CellClaimsArrays claims;  // padded shape
   ImmersedLedgerArrays ledger;  // per cell
 };
 }  // namespace detail
@@ -30,12 +32,15 @@ ImmersedBoundary::ImmersedBoundary(const cip::GasGrid& grid, FacePointRule rule)
   a_->update.active.assign(n, 1);
   a_->update.changed.assign(n, 0);
   a_->update.next.assign(n, cip::CellContent{0, 0, 0, 0});
-  a_->ledger.transitions.assign(static_cast<index_t>(grid.nx) * grid.ny, TransitionLedger{0, 0, 0, 0});
+  a_->claims.claim.assign(n, kNoClaim);
+  a_->claims.taken.assign(n, cip::CellContent{0, 0, 0, 0});
+  a_->ledger.transitions.assign(static_cast<index_t>(grid.nx) * grid.ny, TransitionLedger{0, 0, 0, 0, 0, 0});
 }
 
 ImmersedBoundary::~ImmersedBoundary() = default;
 
 FaceOwners<Access::read_write> ImmersedBoundary::owners() { return a_->owners.view(grid_.padded_shape()); }
+CellClaims<Access::read_write> ImmersedBoundary::claims() { return a_->claims.view(grid_.padded_shape()); }
 
 void ImmersedBoundary::run(Stage stage, CouplingContext& ctx, const StageStep& /*step*/) {
   switch (stage) {
@@ -53,6 +58,7 @@ void ImmersedBoundary::report(const CouplingDiagnostics& d, CsvRecord& o) const 
 void ImmersedBoundary::cover(CouplingContext& ctx) {
   fill_device("ibm.clear_owner.u", a_->owners.u, kNoOwner);
   fill_device("ibm.clear_owner.v", a_->owners.v, kNoOwner);
+  fill_device("ibm.clear_claim", a_->claims.claim, kNoClaim);
   const fdem::RockView rock = ctx.rock.view();
   for_each_index("ibm.cover", rock.triangle_count, CoverKernel{rock, grid_, ctx.owners});
 }
@@ -71,7 +77,7 @@ void ImmersedBoundary::update_cells(CouplingContext& ctx) {
   const CellUpdate<Access::read_write> update = a_->update.view(sh);
   for_each_cell("ibm.cells.mask", 0, g.nx, 0, g.ny, NewMaskKernel{owners, update.active});
   for_each_cell("ibm.cells.transition", 0, g.nx, 0, g.ny,
-                TransitionKernel{ib.cell_active, update, ctx.gas.cells(), a_->ledger.view(), g.nx, g.ny, g.cell_area(),
+                TransitionKernel{ib.cell_active, update, ctx.gas.cells(), a_->ledger.view(), ctx.claims, g.nx, g.ny, g.cell_area(),
                                  ctx.ambient.density, ctx.ambient.internal_energy, ctx.first});
   for_each_cell("ibm.cells.apply", 0, g.nx, 0, g.ny,
                 ApplyTransitionKernel{a_->update.read(sh), ib.u_imposed, ib.v_imposed, ib.cell_active, ctx.gas.cells()});
@@ -87,6 +93,8 @@ void ImmersedBoundary::add_diagnostics(const CouplingContext& /*ctx*/, CouplingD
   d.transitions.uncovered = std::lround(total(&TransitionLedger::uncovered));
   d.transitions.mass_created = total(&TransitionLedger::mass_created);
   d.transitions.energy_created = total(&TransitionLedger::energy_created);
+  d.transitions.mass_lost = total(&TransitionLedger::mass_lost);
+  d.transitions.energy_lost = total(&TransitionLedger::energy_lost);
   d.energy_added += d.transitions.energy_created;
 }
 

@@ -175,7 +175,7 @@ TEST_CASE("Coupling processes: the schedule is the stages each declares, run in 
         "gas_force_y_N_per_m,recorder_calls");
   CHECK(csv_text(CsvRecord::Mode::row, [&](CsvRecord& o) { recorder.report({}, o); }) == "5");
   // A stage a process does not declare is refused, naming both.
-  ibm::CouplingContext ctx{c.gas, c.rock, air, 1e5, {}, false, 0.0};
+  ibm::CouplingContext ctx{c.gas, c.rock, air, 1e5, {}, {}, false, 0.0};
   try {
     recorder.run(ibm::Stage::cover, ctx, {});
     FAIL("no exception");

@@ -20,12 +20,14 @@ struct Patch {
   PaddedShape shape{n + 1, n + 1, 2};
   std::vector<double> rho, e, u, v, zero;
   std::vector<std::uint8_t> old_active, new_active, changed, prescribed;
-  std::vector<cip::CellContent> next;
+  std::vector<cip::CellContent> next, taken;
+  std::vector<int> claim;
   std::vector<ibm::TransitionLedger> ledger;
   Patch()
       : rho(shape.size(), 0.0), e(shape.size(), 0.0), u(shape.size(), 0.0), v(shape.size(), 0.0), zero(shape.size(), 0.0),
         old_active(shape.size(), 1), new_active(shape.size(), 1), changed(shape.size(), 0), prescribed(shape.size(), 0),
-        next(shape.size(), cip::CellContent{0, 0, 0, 0}), ledger(n * n, ibm::TransitionLedger{0, 0, 0, 0}) {
+        next(shape.size(), cip::CellContent{0, 0, 0, 0}), taken(shape.size(), cip::CellContent{0, 0, 0, 0}),
+        claim(shape.size(), ibm::kNoClaim), ledger(n * n, ibm::TransitionLedger{0, 0, 0, 0, 0, 0}) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) rho[shape.offset(i, j)] = 1.0 + 0.1 * i + 0.01 * j, e[shape.offset(i, j)] = 2e5 + 1e3 * j;
   }
@@ -36,8 +38,8 @@ struct Patch {
   //! The transition (what every cell holds after the move), then its application to the state.
   void run(double area, double rho_ambient, double e_ambient) {
     const ibm::CellUpdate<Access::read_write> update{view(new_active), view(changed), view(next)};
-    const ibm::TransitionKernel k{view(old_active), update, cells(), {ledger.data()}, n, n, area, rho_ambient,
-                                  e_ambient, false};
+    const ibm::TransitionKernel k{view(old_active), update, cells(), {ledger.data()}, {view(claim), view(taken)},
+                                  n, n, area, rho_ambient, e_ambient, false};
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) k(i, j);
     const ibm::ApplyTransitionKernel apply{update, view(zero), view(zero), view(old_active), cells()};
@@ -81,6 +83,45 @@ TEST_CASE("Coupling kernels: a covered cell hands its gas to its neighbours, mas
   for (const ibm::TransitionLedger& l : p.ledger) covered += l.covered, mass_created += l.mass_created;
   CHECK(covered == 1.0);
   CHECK(mass_created == 0.0);
+}
+
+TEST_CASE("Coupling kernels: a covered cell with nowhere to go gives its gas to the segment that claims it, else it "
+          "is lost and booked", "[ibm][kernels][transitions]") {
+  // A 3 x 3 block covered at once: its centre (2, 2) has no stable cell in its block. Unclaimed, its gas is lost,
+  // booked as negative created mass and as lost mass; claimed (CellClaims::claim, a crack segment's gap), its gas
+  // (mass, internal energy: gas at rest has no kinetic energy on its faces) goes to `taken` whole, nothing is
+  // lost, and the active cells' gas plus what was taken equals the gas before, exactly as the ring's cells hand
+  // theirs to their stable neighbours.
+  const double area = 1e-4;
+  for (const bool claimed : {false, true}) {
+    Patch p;
+    for (int j = 1; j <= 3; ++j)
+      for (int i = 1; i <= 3; ++i) p.new_active[p.shape.offset(i, j)] = 0;
+    if (claimed) p.claim[p.shape.offset(2, 2)] = 7;
+    const std::array<double, 2> before = p.totals(p.old_active, area);
+    const double rho = p.at(p.rho, 2, 2), rho_e = rho * p.at(p.e, 2, 2);
+    p.run(area, 1.2, 2.09e5);
+    const std::array<double, 2> after = p.totals(p.new_active, area);
+    const ibm::TransitionLedger& l = p.ledger[2 * Patch::n + 2];
+    const cip::CellContent t = p.taken[p.shape.offset(2, 2)];
+    std::printf("transition, centre of a covered 3 x 3 block %s: taken %.6e kg/m, lost %.6e kg/m (its gas %.6e kg/m); "
+                "active gas + taken + lost - before: %.1e kg/m, %.1e J/m\n",
+                claimed ? "claimed" : "unclaimed", t.mass * area, l.mass_lost, rho * area,
+                after[0] + t.mass * area + l.mass_lost - before[0], after[1] + t.energy * area + l.energy_lost - before[1]);
+    CHECK_THAT(after[0] + t.mass * area + l.mass_lost, Catch::Matchers::WithinRel(before[0], 1e-14));
+    CHECK_THAT(after[1] + t.energy * area + l.energy_lost, Catch::Matchers::WithinRel(before[1], 1e-14));
+    if (claimed) {
+      CHECK(t.mass == rho);
+      CHECK(t.energy == rho_e);
+      CHECK(l.mass_lost == 0.0);
+      CHECK(l.mass_created == 0.0);
+    } else {
+      CHECK(t.mass == 0.0);
+      CHECK_THAT(l.mass_lost, Catch::Matchers::WithinRel(rho * area, 1e-15));
+      CHECK_THAT(l.energy_lost, Catch::Matchers::WithinRel(rho_e * area, 1e-15));
+      CHECK(l.mass_created == -l.mass_lost);
+    }
+  }
 }
 
 TEST_CASE("Coupling kernels: an uncovered cell starts from the ambient state and the ledger counts it",

@@ -30,6 +30,8 @@ struct CellTransitions {
   long uncovered = 0;           //!< cells that became active
   double mass_created = 0;      //!< [kg/m] net mass added by these exceptions (negative: removed)
   double energy_created = 0;    //!< [J/m] net internal energy added by them
+  double mass_lost = 0;         //!< [kg/m] of that, the gas of covered cells that had nowhere to go (>= 0)
+  double energy_lost = 0;       //!< [J/m] likewise
 };
 
 //! What the coupling reports, per unit thickness; each process fills its part (add_diagnostics()).
@@ -61,6 +63,9 @@ struct CouplingContext {
   cip::GasPoint ambient;    //!< the state of inactive cells, and of cells the rock uncovers
   double ambient_pressure;  //!< [Pa] of that state
   FaceOwners<Access::read_write> owners;
+  //! Which cells a process claims (ImmersedBoundary::claims()): the gas of a claimed cell covered with no
+  //! stable cell beside it goes to `taken` instead of being lost
+  CellClaims<Access::read_write> claims;
   bool first;  //!< this rock_to_gas() sets the run's initial masks: nothing moves, nothing is counted
   //! [m] how far from a triangle with a crack face the face points it owns may lie (the gaps of the cracks
   //! that keep their own gas: CouplingProcess::owner_margin()); 0 when every owned point lies in its triangle

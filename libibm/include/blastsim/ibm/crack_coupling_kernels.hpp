@@ -41,7 +41,8 @@ inline constexpr int kMouthSamples = 3;
 #define BLASTSIM_CRACK_HANDOVERS(X)                                                                  \
   X(std::uint8_t, pending, "1: the segment handed its gas over; it goes to its gap's cells in after_rock") \
   X(ChannelConserved, gas, "the gas it hands over")                                                  \
-  X(int, samples, "how many of its kHandoverSamples points found a cell in this step (0: none)")
+  X(int, samples, "how many of its kHandoverSamples points found a cell in this step (0: none)")            \
+  X(std::uint8_t, reverted, "1: the grid gave the segment back to its channel since the last after_cells")
 //! A segment hands its gas to the grid at kHandoverSamples points of its gap (four along it, two across), in
 //! equal shares, so that a gap several cells long and wide does not receive it in one cell.
 inline constexpr int kHandoverAlong = 4, kHandoverAcross = 2, kHandoverSamples = kHandoverAlong * kHandoverAcross;
@@ -74,7 +75,9 @@ namespace blastsim::ibm {
   X(double, refused_y, "per record: y momentum [kg/s] its cell had no free face to take (on the walls)")
 #define BLASTSIM_CRACK_WALL_LEDGER(X)                                                                   \
   X(double, wall_work, "per segment: work [J/m] of its gas on the walls since the start")              \
-  X(double, unpaid_work, "per segment: work [J/m] its loads did on the rock beyond what its gas paid")
+  X(double, unpaid_work, "per segment: work [J/m] its loads did on the rock beyond what its gas paid")          \
+  X(double, taken_mass, "per segment: gas [kg/m] it took from covered cells of its gap (reverse hand-over)")     \
+  X(double, taken_energy, "per segment: energy [J/m] it took with that gas")
 #define BLASTSIM_CRACK_DEPOSIT_ORDER(X)                            \
   X(int, key, "cell key of each record (INT_MAX: none), sorted")   \
   X(int, record, "the record at each sorted position")
@@ -243,8 +246,9 @@ struct HandoverGaps {
 //! (E -= p dV: the rock's edge pressures do the same work on the rock). Hand-over: a gas segment whose faces
 //! are at least gaps.handover apart gives its gas to the grid (held in `handovers` until after_gas puts it in
 //! a cell of the crack) and the grid carries the crack from then on; a grid segment whose faces come back
-//! within gaps.back takes its own gas again, starting empty (its cells are covered, and their gas goes to
-//! their neighbours). So the two gases never share a crack.
+//! within gaps.back takes its own gas again (`reverted`): it starts empty, and when its gap's cells are covered
+//! their gas goes to their stable neighbours or, with none, to the segment (CrackClaimedGasKernel). So the two
+//! gases never share a crack.
 struct CrackGeometryKernel {
   fdem::RockView rock;
   cip::GasMaterials mat;
@@ -278,6 +282,7 @@ struct CrackGeometryKernel {
     const bool wide = f.opening >= (kind == kSegmentGrid ? gaps.back : gaps.handover);
     if (kind == kSegmentNone || (kind == kSegmentGrid && !wide)) {
       seg.kind[s] = wide ? kSegmentGrid : kSegmentGas, seg.cons[s] = {0, 0, 0, 0, 0}, seg.volume[s] = V;
+      if (kind == kSegmentGrid) handovers.reverted[s] = 1;  // its gap's cells give it their gas (after_cells)
       return;
     }
     if (kind != kSegmentGas) return;
@@ -302,17 +307,55 @@ struct CrackGeometryKernel {
   }
 };
 
+//! Calls visit(face, i, j, nearer_a) for every face point (face 0: x-faces, 1: y-faces) inside the gap of a
+//! crack with faces f: the quadrilateral between them as two triangles (a0, a1, b0) and (a0, b0, b1), over the
+//! points of the quadrilateral's box, in a fixed order; nearer_a: the point lies nearer face A than face B.
+template <class Visit>
+BLAST_HD inline void for_each_gap_point(const cip::GasGrid& g, const JointFaces& f, const Visit& visit) {
+  const double tx[2][3] = {{f.a0.x, f.a1.x, f.b0.x}, {f.a0.x, f.b0.x, f.b1.x}};
+  const double ty[2][3] = {{f.a0.y, f.a1.y, f.b0.y}, {f.a0.y, f.b0.y, f.b1.y}};
+  const double qx[4] = {f.a0.x, f.a1.x, f.b0.x, f.b1.x}, qy[4] = {f.a0.y, f.a1.y, f.b0.y, f.b1.y};
+  for (int face = 0; face < 2; ++face) {
+    const FaceBox b = triangle_face_box(g, qx, qy, face);
+    const FaceBox b2 = triangle_face_box(g, qx + 1, qy + 1, face);  // the quad's box: both triangles' union
+    const int i0 = imin(b.i0, b2.i0), i1 = imax(b.i1, b2.i1), j0 = imin(b.j0, b2.j0), j1 = imax(b.j1, b2.j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const double px = g.x_min + (i + b.ox) * g.dx, py = g.y_min + (j + b.oy) * g.dy;
+        double w[3];
+        const bool in = (barycentric(tx[0], ty[0], px, py, w) && inside(w)) ||
+                        (barycentric(tx[1], ty[1], px, py, w) && inside(w));
+        if (in) visit(face, i, j, segment_distance2(f.a0, f.a1, px, py) <= segment_distance2(f.b0, f.b1, px, py));
+      }
+  }
+}
+
+//! The cells beside face point (i, j) of `face` (0: x-face between cells i - 1 and i; 1: y-face between j - 1
+//! and j) that lie in the grid: calls visit(ci, cj) for each.
+template <class Visit>
+BLAST_HD inline void for_each_face_cell(const cip::GasGrid& g, int face, int i, int j, const Visit& visit) {
+  const int i0 = face == 0 ? i - 1 : i, j0 = face == 0 ? j : j - 1;
+  if (i0 >= 0 && j0 >= 0) visit(i0, j0);
+  if (i < g.nx && j < g.ny) visit(i, j);
+}
+
 //! The gap of every crack that holds its own gas is solid to the grid (one thread per joint): the face points
 //! (x-faces for u, y-faces for v) between its two faces take, as owner, the triangle of the nearer face, so a
 //! crack narrower than the hand-over width opens no grid cell: the grid cannot carry its flow (a face row
 //! along it would carry a cell's width of gas through a micron-wide crack, and a crack a few tenths of a cell
-//! wide opens isolated cells), and its gas is the channel's alone. Order-independent (atomic maximum), as the
-//! triangles' own cover.
+//! wide opens isolated cells), and its gas is the channel's alone. A segment that the grid just gave back
+//! (`reverted`: the reverse hand-over) claims the cells beside those points (CellClaims): one covered with no
+//! stable cell beside it gives the segment its gas (CrackClaimedGasKernel) instead of losing it. Only then: an
+//! isolated pocket that a narrow crack closes (a cut cell over a crack line) holds a cell's volume of gas by the
+//! grid's count, too much for a channel of microns. Order-independent (atomic maxima), as the triangles' own
+//! cover.
 struct CrackGapCoverKernel {
   fdem::RockView rock;
   cip::GasGrid g;
   CrackSegments<Access::read> seg;
+  CrackHandovers<Access::read> handovers;  //!< reads `reverted`
   FaceOwners<Access::read_write> owners;
+  Field2D<int> claim;  //!< CellClaims::claim
   BLAST_HD void operator()(index_t ji) const {
     const int s = static_cast<int>(ji);
     if (seg.kind[s] != kSegmentGas) return;
@@ -320,25 +363,53 @@ struct CrackGapCoverKernel {
     if (!(f.opening > 0.0)) return;
     const fdem::JointNodes jn = rock.joint.nodes[s];
     const int tri_a = jn.a0 / 3, tri_b = jn.b0 / 3;
-    // The gap as two triangles: (a0, a1, b0) and (a0, b0, b1).
-    const double tx[2][3] = {{f.a0.x, f.a1.x, f.b0.x}, {f.a0.x, f.b0.x, f.b1.x}};
-    const double ty[2][3] = {{f.a0.y, f.a1.y, f.b0.y}, {f.a0.y, f.b0.y, f.b1.y}};
-    const double qx[4] = {f.a0.x, f.a1.x, f.b0.x, f.b1.x}, qy[4] = {f.a0.y, f.a1.y, f.b0.y, f.b1.y};
-    for (int face = 0; face < 2; ++face) {
-      const FaceBox b = triangle_face_box(g, qx, qy, face);
-      const FaceBox b2 = triangle_face_box(g, qx + 1, qy + 1, face);  // the quad's box: both triangles' union
-      const int i0 = imin(b.i0, b2.i0), i1 = imax(b.i1, b2.i1), j0 = imin(b.j0, b2.j0), j1 = imax(b.j1, b2.j1);
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) {
-          const double px = g.x_min + (i + b.ox) * g.dx, py = g.y_min + (j + b.oy) * g.dy;
-          double w[3];
-          const bool in = (barycentric(tx[0], ty[0], px, py, w) && inside(w)) ||
-                          (barycentric(tx[1], ty[1], px, py, w) && inside(w));
-          if (!in) continue;
-          const bool nearer_a = segment_distance2(f.a0, f.a1, px, py) <= segment_distance2(f.b0, f.b1, px, py);
-          atomic_max(&(face == 0 ? owners.u : owners.v)(i, j), nearer_a ? tri_a : tri_b);
-        }
-    }
+    const bool claims = handovers.reverted[s] != 0;
+    for_each_gap_point(g, f, [&](int face, int i, int j, bool nearer_a) {
+      atomic_max(&(face == 0 ? owners.u : owners.v)(i, j), nearer_a ? tri_a : tri_b);
+      if (claims) for_each_face_cell(g, face, i, j, [&](int ci, int cj) { atomic_max(&claim(ci, cj), s); });
+    });
+  }
+};
+
+//! The reverse hand-over (after_cells, one thread per joint): a gas segment that the grid just gave back collects
+//! the gas that the cells it claims (CrackGapCoverKernel) gave up when they were covered with no stable cell
+//! beside them
+//! (ibm::TransitionKernel: their mass, internal energy with their faces' kinetic energy, and materials; their
+//! momentum went to the walls, as any covered cell's), and clears it; the walls' ledger books what it took. The
+//! cells are visited in the gap's fixed order, each once per face point beside it: what a cell gave is taken at
+//! its first visit, so the sums do not depend on the schedule.
+struct CrackClaimedGasKernel {
+  fdem::RockView rock;
+  cip::GasGrid g;
+  CrackSegments<Access::read_write> seg;
+  CrackHandovers<Access::read_write> handovers;  //!< `reverted`, cleared here
+  CrackWallLedger<Access::read_write> ledger;
+  Field2D<const int> claim;
+  Field2D<cip::CellContent> taken;
+  BLAST_HD void operator()(index_t ji) const {
+    const int s = static_cast<int>(ji);
+    if (!handovers.reverted[s]) return;
+    handovers.reverted[s] = 0;
+    if (seg.kind[s] != kSegmentGas) return;
+    const JointFaces f = joint_faces(rock, s);
+    if (!(f.opening > 0.0)) return;
+    const double area = g.cell_area();
+    ChannelConserved c = seg.cons[s];
+    double m = 0, E = 0;
+    for_each_gap_point(g, f, [&](int face, int i, int j, bool) {
+      for_each_face_cell(g, face, i, j, [&](int ci, int cj) {
+        if (claim(ci, cj) != s) return;
+        const cip::CellContent t = taken(ci, cj);
+        if (t.mass == 0.0 && t.energy == 0.0) return;
+        m += t.mass * area, E += t.energy * area;
+        c.m1 += t.products_mass * area, c.am += t.alpha_mass * area;
+        taken(ci, cj) = cip::CellContent{0, 0, 0, 0};
+      });
+    });
+    if (m == 0.0 && E == 0.0) return;
+    c.m += m, c.E += E;
+    seg.cons[s] = c;
+    ledger.taken_mass[s] += m, ledger.taken_energy[s] += E;
   }
 };
 
@@ -710,12 +781,21 @@ struct BlastFrontOf {
   }
 };
 
-//! Segment s's entry of the walls' ledger [J/m]: the work of its gas on the walls (`unpaid` false), or the work its
-//! loads did on the rock beyond what its gas paid (true).
-struct WallWorkOf {
+//! Segment s's entry of the walls' ledger, for reductions: the work of its gas on the walls [J/m], the work its
+//! loads did on the rock beyond what its gas paid [J/m], or the gas [kg/m] and energy [J/m] it took from covered
+//! cells.
+struct WallLedgerOf {
+  enum class Entry { wall_work, unpaid_work, taken_mass, taken_energy };
   CrackWallLedger<Access::read> walls;
-  bool unpaid;
-  BLAST_HD double operator()(index_t s) const { return unpaid ? walls.unpaid_work[s] : walls.wall_work[s]; }
+  Entry entry;
+  BLAST_HD double operator()(index_t s) const {
+    switch (entry) {
+      case Entry::wall_work: return walls.wall_work[s];
+      case Entry::unpaid_work: return walls.unpaid_work[s];
+      case Entry::taken_mass: return walls.taken_mass[s];
+      default: return walls.taken_energy[s];
+    }
+  }
 };
 
 }  // namespace blastsim::ibm

@@ -33,7 +33,7 @@ class CrackGasCoupling : public CouplingProcess {
   const CrackGas& crack_gas() const { return *crack_; }
 
   std::vector<Stage> stages() const override {
-    return {Stage::cover, Stage::after_gas, Stage::before_rock_step, Stage::after_rock};
+    return {Stage::cover, Stage::after_cells, Stage::after_gas, Stage::before_rock_step, Stage::after_rock};
   }
   void run(Stage stage, CouplingContext& ctx, const StageStep& step) override;
 
@@ -75,8 +75,11 @@ class CrackGasCoupling : public CouplingProcess {
   //! joints that just broke become empty gas segments; a gas segment whose volume changes does p dV on its
   //! walls; one whose faces are CrackGasOptions::handover_width cells apart hands its gas to the grid
   //! (CrackGeometryKernel); the gaps of the cracks that keep their own gas are solid to the grid
-  //! (CrackGapCoverKernel).
+  //! (CrackGapCoverKernel), and the cells beside them the segments' claims.
   void cover(CouplingContext& ctx);
+  //! After the cells changed state: each gas segment takes the gas of the cells it claims that were covered with
+  //! no stable cell beside them (the reverse hand-over; CrackClaimedGasKernel).
+  void after_cells(CouplingContext& ctx);
   //! After the gas step of dt [s]: the mouths from the cells' new gas, and what each may draw on over the step
   //! (the cells they share, sorted by cell).
   void after_gas(CouplingContext& ctx, double dt);

@@ -18,6 +18,8 @@ struct CrackGasTotals {
   // the coupling's ledgers since the start (CrackGasCoupling; 0 for a network alone)
   double to_grid_mass = 0;    //!< [kg/m] given to the grid's cells through mouths and hand-overs (< 0: taken)
   double to_grid_energy = 0;  //!< [J/m] likewise
+  double from_cells_mass = 0;    //!< [kg/m] taken from covered cells of the gaps (the reverse hand-over)
+  double from_cells_energy = 0;  //!< [J/m] likewise
   double wall_work = 0;       //!< [J/m] work of the cracks' gas on their walls (what the gas paid)
   double unpaid_work = 0;     //!< [J/m] work of the cushions' loads on the rock beyond what their gas paid
 };

@@ -27,6 +27,9 @@ class ImmersedBoundary : public CouplingProcess {
 
   //! Face-point owners of the grid's padded shape (for CouplingContext).
   FaceOwners<Access::read_write> owners();
+  //! The cells' claims (for CouplingContext): cleared in cover(); a process may claim cells then, and collect
+  //! in after_cells the gas of those covered with nowhere to go.
+  CellClaims<Access::read_write> claims();
   FacePointRule rule() const { return rule_; }
 
   std::vector<Stage> stages() const override { return {Stage::cover, Stage::update_cells}; }

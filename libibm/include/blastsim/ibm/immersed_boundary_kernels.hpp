@@ -21,6 +21,8 @@ namespace blastsim::ibm {
 
 //! Owner of a face point: none, a rock triangle (>= 0), or an unburnt charge (charge_kernels.hpp).
 inline constexpr int kNoOwner = -1, kChargeOwner = -2;
+//! No process claims the gas of a cell covered with nowhere to go (CellClaims::claim).
+inline constexpr int kNoClaim = -1;
 
 //! The immersed boundary's arrays on the gas grid's padded shape, as field lists X(element type, name,
 //! comment) (core/access.hpp; storage in immersed_boundary.cpp): the face points' owners, rasterised every
@@ -33,6 +35,9 @@ inline constexpr int kNoOwner = -1, kChargeOwner = -2;
   X(std::uint8_t, active, "the mask being built (1: active)")                                    \
   X(std::uint8_t, changed, "1 where the cell's gas moved in this update")                        \
   X(cip::CellContent, next, "what the cell holds after the move, per unit area")
+#define BLASTSIM_IBM_CELL_CLAIMS(X)                                                                                \
+  X(int, claim, "the crack segment whose gap holds a face point of the cell (kNoClaim: none), set each cover")    \
+  X(cip::CellContent, taken, "the gas [per unit area] a covered cell with no stable cell beside it gave its claim")
 
 //! Cumulative transitions of one cell [per unit thickness].
 struct TransitionLedger {
@@ -40,6 +45,8 @@ struct TransitionLedger {
   double uncovered;       //!< times it became active
   double mass_created;    //!< [kg/m] ambient gas given to it, less gas removed with nowhere to go
   double energy_created;  //!< [J/m] likewise
+  double mass_lost;       //!< [kg/m] of that, the gas removed with nowhere to go (>= 0)
+  double energy_lost;     //!< [J/m] likewise
 };
 }  // namespace blastsim::ibm
 BLASTSIM_CHECKPOINT_REALS(blastsim::ibm::TransitionLedger)
@@ -48,6 +55,7 @@ namespace blastsim::ibm {
 
 BLASTSIM_FIELD_GROUP(FaceOwners, BLASTSIM_IBM_FACE_OWNERS)
 BLASTSIM_FIELD_GROUP(CellUpdate, BLASTSIM_IBM_CELL_UPDATE)
+BLASTSIM_FIELD_GROUP(CellClaims, BLASTSIM_IBM_CELL_CLAIMS)
 BLASTSIM_VIEW_GROUP(ImmersedLedger, BLASTSIM_IBM_LEDGER)
 
 //! The face points of one kind (face 0: x-faces at (x_min + i dx, y_min + (j + 1/2) dy); 1: y-faces at
@@ -196,13 +204,16 @@ struct NewMaskKernel {
 //! gas arrived). Every cell computes its own new content from the old ones (a gather: no atomics,
 //! order-independent), with the materials' share moving with the mass (cip::GasCells). The ledger counts the
 //! transitions and the mass and energy they create: the ambient gas of uncovered cells, minus the gas of a
-//! covered cell with no stable cell in its block. `reset` (the first call): covered cells take the ambient
-//! state, nothing moves and nothing is counted. A cell that changes state holds air.
+//! covered cell with no stable cell in its block, unless another model claims that cell (`claims.claim`: the
+//! crack segment whose gap covers it, CrackGapCoverKernel): then its gas goes to `claims.taken` for the claimant
+//! to collect in after_cells, and nothing is created or lost. `reset` (the first call): covered cells take the
+//! ambient state, nothing moves and nothing is counted. A cell that changes state holds air.
 struct TransitionKernel {
   Field2D<const std::uint8_t> old_active;
   CellUpdate<Access::read_write> update;  //!< reads the new mask `active`; writes `changed` and `next`
   cip::GasCellsRead cells;
   ImmersedLedger<Access::read_write> ledger;
+  CellClaims<Access::read_write> claims;  //!< reads `claim`; writes `taken` of the claimed cells
   int nx, ny;
   double cell_area, rho_ambient, e_ambient;
   bool reset;
@@ -255,8 +266,15 @@ struct TransitionKernel {
           led.energy_created += rho_ambient * e_ambient * cell_area;
         } else {
           led.covered += 1.0;
-          if (count_stable_block(i, j) == 0)
-            led.mass_created -= c.mass * cell_area, led.energy_created -= handed_energy(i, j) * cell_area;
+          if (count_stable_block(i, j) == 0) {
+            const double e = handed_energy(i, j);
+            if (claims.claim(i, j) != kNoClaim) {
+              claims.taken(i, j) = {c.mass, e, c.products_mass, c.alpha_mass};
+            } else {
+              led.mass_created -= c.mass * cell_area, led.energy_created -= e * cell_area;
+              led.mass_lost += c.mass * cell_area, led.energy_lost += e * cell_area;
+            }
+          }
         }
       }
       c = {rho_ambient, rho_ambient * e_ambient, 0.0, 0.0};
