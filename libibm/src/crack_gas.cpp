@@ -203,7 +203,7 @@ void CrackGas::step_from_primitives(double dt, double interval) {
                                  vacuum_density_, dt});
   for_each_index("crack.junctions", junctions_,
                  JunctionFluxKernel{mat_, g, geo, a.segments.read(), mouths, a.end_states.read(), a.end_fluxes.view(),
-                                    a.deposits.view(), dt, interval});
+                                    a.deposits.view(), options_.flow(), dt, interval});
   for_each_index("crack.update", segments_,
                  SegmentUpdateKernel{mat_, geo, a.segments.view(), a.end_fluxes.read(),
                                      options_.flow(), vacuum_density_, dt});

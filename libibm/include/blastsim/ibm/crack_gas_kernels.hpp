@@ -195,6 +195,59 @@ BLAST_HD inline double friction_rate(double rho, double u, double w, const Chann
   return fmax(turbulent, f.laminar_factor * 12.0 * flow.viscosity / (rho * w * w));
 }
 
+//! The flux between two gas segments, or between a mouth's reservoir and the first segment, where the walls'
+//! friction acts (JunctionFluxKernel). Where the friction rate sigma [1/s] is large the momentum equation relaxes
+//! to the balance of the pressure gradient and the wall shear (rho sigma u = -dp/dx) and the flow becomes a
+//! nonlinear diffusion: the friction-dominated flow of docs/coupling.md "Front in a rigid crack". An upwind
+//! Riemann flux keeps its dissipation lambda (U_R - U_L) / 2 there, a diffusion lambda d / 2 against the flow's
+//! own c^2 / (n sigma): at the resolutions of a blast's cracks it carries gas ahead of a front at the sound
+//! speed, and the front runs ahead (the diffusion limit of hyperbolic relaxation: Jin & Levermore 1996,
+//! J. Comput. Phys. 126:449; Gosse & Toscani 2002, C. R. Math. Acad. Sci. Paris 334:337). So the flux is
+//! alpha F_Riemann + (1 - alpha) F_D, F_D the two-point flux of the relaxed momentum equation: the donor's gas
+//! (the face state on the side of higher pressure) at the velocity u_D that balances the pressure difference
+//! between the two centres over their distance d against the wall shear, u_D rate(u_D) = |p_L - p_R| /
+//! (rho_d d) for friction_rate() (the smaller of the laminar cubic-law and the fully rough velocities), capped
+//! at the donor's sound speed (a friction flow cannot pass the choked limit). The weight alpha is the largest of
+//! - 1 / (1 + Pi), Pi = sigma d / u_D: the wall shear against the flow's inertia across the distance d (for fully
+//!   rough walls f d / (4 w)); the Riemann flux carries the inertia, the Darcy flux neglects it;
+//! - the least weight that keeps the explicit step stable: F_D is a diffusion of coefficient c^2 / (n sigma)
+//!   (n = 1 laminar, u_D ~ dp/dx; n = 2 fully rough, u_D ~ sqrt(dp/dx)), nu = c^2 dt / (n sigma d^2), and
+//!   alpha C + 2 (1 - alpha) nu <= 1 (C = lambda dt / d): 0 while 2 nu <= 1, else (2 nu - 1) / (2 nu - C);
+//! - the weight that keeps the Darcy flux's own Courant number (1 - alpha) u_D dt / d at most 1/2.
+//! Without friction alpha = 1 (the Riemann flux alone). c, lambda: the larger of the two centres'.
+struct FrictionWeightedFlux {
+  ChannelFlux darcy;  //!< F_D per unit flux area, positive from left to right
+  double alpha;       //!< the Riemann flux's weight [-]
+};
+BLAST_HD inline FrictionWeightedFlux friction_weighted_flux(const ChannelPrimitive& L, const ChannelPrimitive& R,
+                                                            const ChannelPrimitive& face_L,
+                                                            const ChannelPrimitive& face_R, double d, double w,
+                                                            double dt, const ChannelFlowParams& flow) {
+  const FrictionWeightedFlux riemann{{0, 0, 0, 0, 0}, 1.0};
+  const double dp = L.p - R.p;
+  const ChannelPrimitive& D = dp >= 0.0 ? face_L : face_R;  // the donor
+  if (is_vacuum(D) || dp == 0.0 || !(d > 0.0)) return riemann;
+  const double grad = fabs(dp) / d;  // [Pa/m]
+  const RoughChannelFriction f = wall_friction(w, flow);
+  const double none = 1e300;
+  const double u_lam = flow.viscosity > 0.0 ? grad * w * w / (12.0 * flow.viscosity * f.laminar_factor) : none;
+  const double u_turb = f.turbulent > 0.0 ? sqrt(4.0 * w * grad / (f.turbulent * D.rho)) : none;
+  const double u = fmin(u_lam, u_turb);
+  if (!(u < none)) return riemann;  // no friction
+  const double sigma = grad / (D.rho * u), n = u_lam <= u_turb ? 1.0 : 2.0;
+  const double c = fmax(is_vacuum(L) ? 0.0 : L.c, is_vacuum(R) ? 0.0 : R.c);
+  const double lambda = fmax(is_vacuum(L) ? 0.0 : fabs(L.u) + L.c, is_vacuum(R) ? 0.0 : fabs(R.u) + R.c);
+  const double nu = c * c * dt / (n * sigma * d * d), C = lambda * dt / d;
+  const double a_stab = 2.0 * nu <= 1.0 ? 0.0 : fmin(1.0, (2.0 * nu - 1.0) / fmax(2.0 * nu - C, 1e-300));
+  const double a_inertia = 1.0 / (1.0 + sigma * d / u);
+  const double ud = fmin(u, D.c);  // [m/s] the Darcy velocity, at most the sound speed
+  const double a_courant = 1.0 - 0.5 * d / (ud * dt);
+  const double alpha = fmin(1.0, fmax(a_stab, fmax(a_inertia, a_courant)));
+  const double sign = dp >= 0.0 ? 1.0 : -1.0, G = sign * D.rho * ud;  // [kg/(m2 s)] from left to right
+  const double h = (D.Edens + D.p) / D.rho;                            // the donor's total enthalpy [J/kg]
+  return {{G, G * sign * ud + 0.5 * (face_L.p + face_R.p), G * h, G * D.Y, G * D.alpha}, alpha};
+}
+
 //! Nusselt number Nu = h D_h / k of fully developed laminar flow between parallel plates at one uniform
 //! temperature (Shah & London 1978, "Laminar Flow Forced Convection in Ducts", Academic Press; D_h = 2 w).
 inline constexpr double kParallelPlateNusselt = 7.541;
@@ -213,10 +266,12 @@ BLAST_HD inline double wall_heat_rate(double rho, double u, double w, double gam
   return fmax(turbulent, kParallelPlateNusselt * gamma * flow.viscosity / (flow.prandtl * rho * w * w));
 }
 
-//! minmod slope limiter.
-BLAST_HD inline double minmod(double a, double b) {
+//! Monotonized central slope limiter (van Leer 1977, J. Comput. Phys. 23:276): the central slope (a + b) / 2,
+//! limited to twice either one-sided slope; 0 at an extremum.
+BLAST_HD inline double mc_limiter(double a, double b) {
   if (a * b <= 0) return 0.0;
-  return fabs(a) < fabs(b) ? a : b;
+  const double m = fmin(2.0 * fabs(a), fmin(2.0 * fabs(b), 0.5 * fabs(a + b)));
+  return a > 0 ? m : -m;
 }
 
 //! A state from density, velocity, pressure and the products fractions (the MUSCL-Hancock face values).
@@ -306,7 +361,7 @@ BLAST_HD inline int chain_neighbour(const CrackGraph& g, const CrackMouths<Acces
 }
 
 //! States at the two ends of every gas segment after half a step (MUSCL-Hancock: Toro 2009, sec. 14.4, with
-//! minmod slopes of rho, u, p, Y, alpha between chain neighbours, first order where a segment has no
+//! monotonized central slopes of rho, u, p, Y, alpha between chain neighbours (mc_limiter()), first order where a segment has no
 //! neighbour on one side or a reconstructed value is not positive).
 struct FaceStateKernel {
   cip::GasMaterials mat;
@@ -333,11 +388,11 @@ struct FaceStateKernel {
     const double d0 = 0.5 * (L + geo.length[o0]), d1 = 0.5 * (L + geo.length[o1]);
     // Neighbour velocities in this segment's frame: reversed when the two axes meet head to head or tail to tail.
     const double u0 = eo0 == 0 ? -Q0.u : Q0.u, u1 = eo1 == 1 ? -Q1.u : Q1.u;
-    const double rx = minmod((P.rho - Q0.rho) / d0, (Q1.rho - P.rho) / d1);
-    const double ux = minmod((P.u - u0) / d0, (u1 - P.u) / d1);
-    const double px = minmod((P.p - Q0.p) / d0, (Q1.p - P.p) / d1);
-    const double Yx = minmod((P.Y - Q0.Y) / d0, (Q1.Y - P.Y) / d1);
-    const double ax = minmod((P.alpha - Q0.alpha) / d0, (Q1.alpha - P.alpha) / d1);
+    const double rx = mc_limiter((P.rho - Q0.rho) / d0, (Q1.rho - P.rho) / d1);
+    const double ux = mc_limiter((P.u - u0) / d0, (u1 - P.u) / d1);
+    const double px = mc_limiter((P.p - Q0.p) / d0, (Q1.p - P.p) / d1);
+    const double Yx = mc_limiter((P.Y - Q0.Y) / d0, (Q1.Y - P.Y) / d1);
+    const double ax = mc_limiter((P.alpha - Q0.alpha) / d0, (Q1.alpha - P.alpha) / d1);
     // Half-step time derivatives of the primitive equations.
     const double h = 0.5 * dt;
     const double rt = -(P.u * rx + P.rho * ux), ut = -(P.u * ux + px / P.rho), pt = -(P.u * px + P.rho * P.c * P.c * ux);
@@ -359,14 +414,16 @@ BLAST_HD inline ChannelFlux scaled(const ChannelFlux& f, double a) { return {f.m
 //! threads write the same entry). Momentum is in each segment's outward direction at that end.
 //! - a mouth: every end exchanges with the reservoir through a steady nozzle (nozzle_flow(): gas flows from
 //!   the side of higher pressure, from that side's stagnation state, choked at M = 1), flux area = its aperture;
+//!   the inflow's mass flux weighted against the walls' friction (friction_weighted_flux());
 //!   what leaves the cracks is added to the junction's deposit (in entry order: deterministic). The reservoir
 //!   (a grid cell) keeps its state over the channel's substeps, so what the cracks draw from it over the whole
 //!   interval is held to a quarter of the gas it holds (the nozzles scaled down together, each to a nozzle of
 //!   that fraction of its width: mass, momentum and energy alike); gas that
 //!   reaches the mouth faster than sound leaves with its own flux (no nozzle can pass more);
 //! - one gas segment, no mouth: a closed end (wall_pressure());
-//! - k >= 2 gas segments: every pair exchanges an HLLC flux through min(w_a, w_b) / (k - 1) (a straight chain:
-//!   the smaller aperture), computed once per pair and given to both with opposite signs (exact conservation).
+//! - k >= 2 gas segments: every pair exchanges an HLLC flux weighted against the friction's two-point flux
+//!   (friction_weighted_flux()) through min(w_a, w_b) / (k - 1) (a straight chain: the smaller aperture),
+//!   computed once per pair and given to both with opposite signs (exact conservation).
 struct JunctionFluxKernel {
   cip::GasMaterials mat;
   CrackGraph g;
@@ -376,6 +433,7 @@ struct JunctionFluxKernel {
   CrackEndStates<Access::read> faces;
   CrackEndFluxes<Access::read_write> fluxes;
   CrackDeposits<Access::read_write> deposits;
+  ChannelFlowParams flow;  //!< the walls' friction (friction_weighted_flux())
   double dt;
   double interval;  //!< [s] the whole step the substeps of dt fill (the reservoirs' states are held over it)
   BLAST_HD void operator()(index_t ji) const {
@@ -414,8 +472,13 @@ struct JunctionFluxKernel {
           // too) and energy all scale, so the gas enters at the nozzle's own state. Scaling the mass alone left
           // the pressure's push on less gas, which then entered faster than the nozzle allows, its kinetic energy
           // above its total below scale ~ 0.49 (a crack wider than about two cells: negative pressure, NaN).
+          // The nozzle's mass flux weighted against the walls' friction over the half segment from the mouth to
+          // the segment's centre (friction_weighted_flux(): the reservoir's gas at rest is the donor).
           const NozzleFlow nf = nozzle_flow(r.rho, r.p, r.rho * r.c * r.c / r.p, s.p);
-          const double h0 = (r.Edens + r.p) / r.rho, G = scale * nf.G;
+          const FrictionWeightedFlux D = friction_weighted_flux(r, reversed(seg.prim[end / 2]), r, reversed(s),
+                                                                0.5 * geo.length[end / 2], w, dt, flow);
+          const double Gw = D.darcy.m > 0.0 ? D.alpha * nf.G + (1.0 - D.alpha) * D.darcy.m : nf.G;
+          const double h0 = (r.Edens + r.p) / r.rho, G = scale * Gw;
           o = {-G * w, (G * nf.u + scale * nf.p) * w, -G * h0 * w, -G * r.Y * w, -G * r.alpha * w};
           area = scale * w;
         } else if (!is_vacuum(s) && s.u >= s.c) {  // out of the crack at its own supersonic speed: no nozzle
@@ -454,10 +517,23 @@ struct JunctionFluxKernel {
     ChannelFlux acc[kCrackMaxDegree];
     double area[kCrackMaxDegree];
     for (int a = 0; a < k; ++a) acc[a] = {0, 0, 0, 0, 0}, area[a] = 0;
+    // a segment's centre state in the frame pointing into the junction (the Darcy flux's two points)
+    auto centre = [&](int end) {
+      const ChannelPrimitive P = seg.prim[end / 2];
+      return end % 2 == 1 ? P : reversed(P);
+    };
     for (int a = 0; a < k; ++a)
       for (int b = a + 1; b < k; ++b) {
-        const double A = fmin(geo.aperture[ends[a] / 2], geo.aperture[ends[b] / 2]) / (k - 1);
-        const ChannelFlux F = scaled(hllc_flux(mat, inward(ends[a]), reversed(inward(ends[b]))), A);
+        const double wf = fmin(geo.aperture[ends[a] / 2], geo.aperture[ends[b] / 2]), A = wf / (k - 1);
+        const ChannelPrimitive La = inward(ends[a]), Rb = reversed(inward(ends[b]));
+        const ChannelFlux H = hllc_flux(mat, La, Rb);
+        const FrictionWeightedFlux D =
+            friction_weighted_flux(centre(ends[a]), reversed(centre(ends[b])), La, Rb,
+                                   0.5 * (geo.length[ends[a] / 2] + geo.length[ends[b] / 2]), wf, dt, flow);
+        const double r = D.alpha, t = 1.0 - D.alpha;
+        const ChannelFlux F = scaled({r * H.m + t * D.darcy.m, r * H.q + t * D.darcy.q, r * H.E + t * D.darcy.E,
+                                      r * H.m1 + t * D.darcy.m1, r * H.am + t * D.darcy.am},
+                                     A);
         acc[a] = {acc[a].m + F.m, acc[a].q + F.q, acc[a].E + F.E, acc[a].m1 + F.m1, acc[a].am + F.am};
         acc[b] = {acc[b].m - F.m, acc[b].q + F.q, acc[b].E - F.E, acc[b].m1 - F.m1, acc[b].am - F.am};
         area[a] += A, area[b] += A;
