@@ -12,6 +12,7 @@
 #pragma once
 
 #include "blastsim/core/checkpoint_traits.hpp"
+#include "blastsim/cip/cip_kernels.hpp"
 #include "blastsim/cip/eos.hpp"
 #include "blastsim/core/access.hpp"
 #include "blastsim/core/field2d.hpp"
@@ -266,14 +267,6 @@ BLAST_HD inline double wall_heat_rate(double rho, double u, double w, double gam
   return fmax(turbulent, kParallelPlateNusselt * gamma * flow.viscosity / (flow.prandtl * rho * w * w));
 }
 
-//! Monotonized central slope limiter (van Leer 1977, J. Comput. Phys. 23:276): the central slope (a + b) / 2,
-//! limited to twice either one-sided slope; 0 at an extremum.
-BLAST_HD inline double mc_limiter(double a, double b) {
-  if (a * b <= 0) return 0.0;
-  const double m = fmin(2.0 * fabs(a), fmin(2.0 * fabs(b), 0.5 * fabs(a + b)));
-  return a > 0 ? m : -m;
-}
-
 //! A state from density, velocity, pressure and the products fractions (the MUSCL-Hancock face values).
 BLAST_HD inline ChannelPrimitive channel_state_rup(const cip::GasMaterials& mat, double rho, double u, double p, double Y,
                                                    double alpha, double vacuum_density) {
@@ -361,8 +354,9 @@ BLAST_HD inline int chain_neighbour(const CrackGraph& g, const CrackMouths<Acces
 }
 
 //! States at the two ends of every gas segment after half a step (MUSCL-Hancock: Toro 2009, sec. 14.4, with
-//! monotonized central slopes of rho, u, p, Y, alpha between chain neighbours (mc_limiter()), first order where a segment has no
-//! neighbour on one side or a reconstructed value is not positive).
+//! van Leer's (1977, J. Comput. Phys. 23:276) monotonized central slopes of rho, u, p, Y, alpha between chain
+//! neighbours, cip::mc_slope(); first order where a segment has no neighbour on one side or a reconstructed value
+//! is not positive).
 struct FaceStateKernel {
   cip::GasMaterials mat;
   CrackGraph g;
@@ -388,11 +382,11 @@ struct FaceStateKernel {
     const double d0 = 0.5 * (L + geo.length[o0]), d1 = 0.5 * (L + geo.length[o1]);
     // Neighbour velocities in this segment's frame: reversed when the two axes meet head to head or tail to tail.
     const double u0 = eo0 == 0 ? -Q0.u : Q0.u, u1 = eo1 == 1 ? -Q1.u : Q1.u;
-    const double rx = mc_limiter((P.rho - Q0.rho) / d0, (Q1.rho - P.rho) / d1);
-    const double ux = mc_limiter((P.u - u0) / d0, (u1 - P.u) / d1);
-    const double px = mc_limiter((P.p - Q0.p) / d0, (Q1.p - P.p) / d1);
-    const double Yx = mc_limiter((P.Y - Q0.Y) / d0, (Q1.Y - P.Y) / d1);
-    const double ax = mc_limiter((P.alpha - Q0.alpha) / d0, (Q1.alpha - P.alpha) / d1);
+    const double rx = cip::mc_slope((P.rho - Q0.rho) / d0, (Q1.rho - P.rho) / d1);
+    const double ux = cip::mc_slope((P.u - u0) / d0, (u1 - P.u) / d1);
+    const double px = cip::mc_slope((P.p - Q0.p) / d0, (Q1.p - P.p) / d1);
+    const double Yx = cip::mc_slope((P.Y - Q0.Y) / d0, (Q1.Y - P.Y) / d1);
+    const double ax = cip::mc_slope((P.alpha - Q0.alpha) / d0, (Q1.alpha - P.alpha) / d1);
     // Half-step time derivatives of the primitive equations.
     const double h = 0.5 * dt;
     const double rt = -(P.u * rx + P.rho * ux), ut = -(P.u * ux + px / P.rho), pt = -(P.u * px + P.rho * P.c * P.c * ux);
